@@ -1,0 +1,246 @@
+#include "core/calibration.h"
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
+#include <opencv2/core/persistence.hpp>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace simcap {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr double kRotationTolerance = 1e-6;
+
+cv::Mat to_mat(const Eigen::MatrixXd& m) {
+  cv::Mat out;
+  cv::eigen2cv(m, out);
+  return out;
+}
+
+Eigen::Vector3d rodrigues_of(const Eigen::Matrix3d& R) {
+  cv::Mat rvec;
+  cv::Rodrigues(to_mat(R), rvec);
+  Eigen::Vector3d out;
+  cv::cv2eigen(rvec, out);
+  return out;
+}
+
+// Reads fields of one camera and reports problems as "file: camera 'name': field 'key': ...".
+class FieldReader {
+ public:
+  FieldReader(const fs::path& file, const cv::FileNode& node, std::string camera)
+      : file_(file), node_(node), camera_(std::move(camera)) {}
+
+  [[noreturn]] void fail(std::string_view key, std::string_view message) const {
+    throw_input_error(file_, 0, "camera '" + camera_ + "': field '" + std::string(key) + "'",
+                      message);
+  }
+
+  Eigen::MatrixXd matrix(std::string_view key, int rows, int cols) const {
+    const cv::FileNode n = node_[std::string(key)];
+    if (n.empty()) fail(key, "missing (expected a " + shape(rows, cols) + " matrix)");
+    cv::Mat m;
+    try {
+      n >> m;
+    } catch (const cv::Exception&) {
+      fail(key, "expected a " + shape(rows, cols) + " !!opencv-matrix");
+    }
+    if (m.empty()) fail(key, "expected a " + shape(rows, cols) + " !!opencv-matrix");
+    // Distortion and vectors are accepted as rows or columns, as OpenCV itself does.
+    const bool vector_like = rows == 1 || cols == 1;
+    const bool ok = (m.rows == rows && m.cols == cols) ||
+                    (vector_like && m.total() == static_cast<size_t>(rows * cols));
+    if (!ok) {
+      fail(key, "expected a " + shape(rows, cols) + " matrix, got " + shape(m.rows, m.cols));
+    }
+    m = m.reshape(1, rows);
+    m.convertTo(m, CV_64F);
+    Eigen::MatrixXd out;
+    cv::cv2eigen(m, out);
+    return out;
+  }
+
+  Eigen::Matrix3d rotation(std::string_view key) const {
+    const Eigen::Matrix3d R = matrix(key, 3, 3);
+    if ((R.transpose() * R - Eigen::Matrix3d::Identity()).norm() > kRotationTolerance ||
+        R.determinant() < 0) {
+      fail(key, "not a rotation matrix (expected R^T R = I and det R = +1)");
+    }
+    return R;
+  }
+
+  Eigen::Matrix3d intrinsics(std::string_view key) const {
+    const Eigen::Matrix3d K = matrix(key, 3, 3);
+    if (K(0, 0) <= 0 || K(1, 1) <= 0 || K(0, 1) != 0 || K(1, 0) != 0 || K(2, 0) != 0 ||
+        K(2, 1) != 0 || K(2, 2) != 1) {
+      // OpenCV's projection model has no skew term, so a skewed K could not be honoured.
+      fail(key, "not a camera matrix (expected [fx 0 cx; 0 fy cy; 0 0 1] with fx, fy > 0)");
+    }
+    return K;
+  }
+
+  int positive_int(std::string_view key) const {
+    const cv::FileNode n = node_[std::string(key)];
+    if (n.empty() || !n.isInt()) fail(key, "missing or not an integer");
+    const int v = static_cast<int>(n);
+    if (v <= 0) fail(key, "must be positive, got " + std::to_string(v));
+    return v;
+  }
+
+  void check_rodrigues_matches(std::string_view key, const Eigen::Matrix3d& R) const {
+    const Eigen::Vector3d rvec = matrix(key, 3, 1);
+    cv::Mat Rm;
+    cv::Rodrigues(to_mat(rvec), Rm);
+    Eigen::Matrix3d Rr;
+    cv::cv2eigen(Rm, Rr);
+    if ((Rr - R).norm() > 1e-5) fail(key, "Rodrigues vector disagrees with the 3x3 rotation");
+  }
+
+ private:
+  static std::string shape(int r, int c) { return std::to_string(r) + "x" + std::to_string(c); }
+  const fs::path& file_;
+  cv::FileNode node_;
+  std::string camera_;
+};
+
+cv::FileStorage open_for_reading(const fs::path& path) {
+  if (!fs::exists(path)) throw Error(path.string() + ": calibration file not found");
+  try {
+    cv::FileStorage fsr(path.string(), cv::FileStorage::READ);
+    if (!fsr.isOpened()) throw Error(path.string() + ": cannot open as an OpenCV YAML file");
+    return fsr;
+  } catch (const cv::Exception& e) {
+    throw Error(path.string() + ": not a valid OpenCV YAML file: " + e.msg);
+  }
+}
+
+std::vector<std::string> read_names(const fs::path& path, const cv::FileStorage& fsr,
+                                    const std::string& key) {
+  const cv::FileNode n = fsr[key];
+  if (n.empty() || !n.isSeq()) {
+    throw_input_error(path, 0, "field '" + key + "'", "missing (expected a list of camera names)");
+  }
+  std::vector<std::string> names;
+  for (const auto& item : n) {
+    if (!item.isString()) {
+      throw_input_error(path, 0, "field '" + key + "'", "every entry must be a camera name");
+    }
+    names.push_back(static_cast<std::string>(item));
+  }
+  if (names.empty()) throw_input_error(path, 0, "field '" + key + "'", "lists no camera");
+  return names;
+}
+
+template <typename WriteBody>
+void write_storage(const fs::path& path, WriteBody&& body) {
+  AtomicFile file(path);
+  {
+    cv::FileStorage fsw(file.temp_path().string(), cv::FileStorage::WRITE);
+    if (!fsw.isOpened()) throw Error(path.string() + ": cannot open for writing");
+    body(fsw);
+  }
+  file.commit();
+}
+
+}  // namespace
+
+void write_opencv_calibration(const fs::path& path, const std::vector<Camera>& cams) {
+  write_storage(path, [&](cv::FileStorage& fsw) {
+    fsw << "camera_names"
+        << "[";
+    for (const auto& c : cams) fsw << c.name;
+    fsw << "]";
+    for (const auto& c : cams) {
+      fsw << c.name << "{";
+      fsw << "image_width" << c.width << "image_height" << c.height;
+      fsw << "K" << to_mat(c.K) << "dist" << to_mat(c.dist.transpose());
+      fsw << "R" << to_mat(c.R) << "rvec" << to_mat(rodrigues_of(c.R)) << "t" << to_mat(c.t);
+      fsw << "}";
+    }
+  });
+}
+
+std::vector<Camera> read_opencv_calibration(const fs::path& path) {
+  cv::FileStorage fsr = open_for_reading(path);
+  std::vector<Camera> cams;
+  for (const auto& name : read_names(path, fsr, "camera_names")) {
+    const cv::FileNode node = fsr[name];
+    if (node.empty() || !node.isMap()) {
+      throw_input_error(path, 0, "camera '" + name + "'",
+                        "listed in camera_names but has no entry of its own");
+    }
+    const FieldReader r(path, node, name);
+    Camera c;
+    c.name = name;
+    c.width = r.positive_int("image_width");
+    c.height = r.positive_int("image_height");
+    c.K = r.intrinsics("K");
+    c.dist = r.matrix("dist", 1, 5).transpose();
+    c.R = r.rotation("R");
+    r.check_rodrigues_matches("rvec", c.R);
+    c.t = r.matrix("t", 3, 1);
+    cams.push_back(std::move(c));
+  }
+  return cams;
+}
+
+void write_easymocap_calibration(const fs::path& intri_path, const fs::path& extri_path,
+                                 const std::vector<Camera>& cams) {
+  auto write_names = [&](cv::FileStorage& fsw) {
+    fsw << "names"
+        << "[";
+    for (const auto& c : cams) fsw << c.name;
+    fsw << "]";
+  };
+  write_storage(intri_path, [&](cv::FileStorage& fsw) {
+    write_names(fsw);
+    for (const auto& c : cams) {
+      fsw << "K_" + c.name << to_mat(c.K);
+      fsw << "dist_" + c.name << to_mat(c.dist.transpose());
+    }
+  });
+  write_storage(extri_path, [&](cv::FileStorage& fsw) {
+    write_names(fsw);
+    for (const auto& c : cams) {
+      fsw << "R_" + c.name << to_mat(rodrigues_of(c.R));
+      fsw << "Rot_" + c.name << to_mat(c.R);
+      fsw << "T_" + c.name << to_mat(c.t);
+    }
+  });
+}
+
+std::vector<Camera> read_easymocap_calibration(const fs::path& intri_path,
+                                               const fs::path& extri_path) {
+  cv::FileStorage intri = open_for_reading(intri_path);
+  cv::FileStorage extri = open_for_reading(extri_path);
+  const auto names = read_names(intri_path, intri, "names");
+  std::vector<Camera> cams;
+  for (const auto& name : names) {
+    const FieldReader ri(intri_path, intri.root(), name);
+    const FieldReader re(extri_path, extri.root(), name);
+    Camera c;
+    c.name = name;
+    c.K = ri.intrinsics("K_" + name);
+    c.dist = ri.matrix("dist_" + name, 1, 5).transpose();
+    c.R = re.rotation("Rot_" + name);
+    re.check_rodrigues_matches("R_" + name, c.R);
+    c.t = re.matrix("T_" + name, 3, 1);
+    cams.push_back(std::move(c));
+  }
+  return cams;
+}
+
+const Camera& find_camera(const std::vector<Camera>& cams, std::string_view name,
+                          const fs::path& source) {
+  std::string known;
+  for (const auto& c : cams) {
+    if (c.name == name) return c;
+    known += (known.empty() ? "" : ", ") + c.name;
+  }
+  throw Error(source.string() + ": unknown camera '" + std::string(name) +
+              "' (the file has: " + known + ")");
+}
+
+}  // namespace simcap

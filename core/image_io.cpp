@@ -1,0 +1,67 @@
+#include "core/image_io.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace simcap {
+namespace fs = std::filesystem;
+namespace {
+
+OIIO::TypeDesc oiio_type(int depth) {
+  switch (depth) {
+    case CV_8U:
+      return OIIO::TypeDesc::UINT8;
+    case CV_16U:
+      return OIIO::TypeDesc::UINT16;
+    case CV_32F:
+      return OIIO::TypeDesc::FLOAT;
+    default:
+      return OIIO::TypeDesc::UNKNOWN;
+  }
+}
+
+}  // namespace
+
+void write_image(const fs::path& path, const cv::Mat& image) {
+  const std::string ext = path.extension().string();
+  const bool exr = ext == ".exr";
+  const bool png = ext == ".png";
+  const int depth = image.depth();
+  if (image.empty()) throw Error(path.string() + ": cannot write an empty image");
+  if (!(png && (depth == CV_8U || depth == CV_16U)) && !(exr && depth == CV_32F)) {
+    throw Error(path.string() +
+                ": unsupported combination of file type and pixel type (PNG takes 8- or 16-bit "
+                "integers, EXR takes float32)");
+  }
+  const cv::Mat data = image.isContinuous() ? image : image.clone();
+  AtomicFile file(path);
+  auto out = OIIO::ImageOutput::create(file.temp_path().string());
+  if (!out) throw Error(path.string() + ": " + OIIO::geterror());
+  OIIO::ImageSpec spec(data.cols, data.rows, data.channels(), oiio_type(depth));
+  if (exr) spec.attribute("compression", "zip");
+  if (!out->open(file.temp_path().string(), spec) ||
+      !out->write_image(oiio_type(depth), data.data) || !out->close()) {
+    throw Error(path.string() + ": write failed: " + out->geterror());
+  }
+  file.commit();
+}
+
+cv::Mat read_image(const fs::path& path) {
+  if (!fs::exists(path)) throw Error(path.string() + ": image not found");
+  auto in = OIIO::ImageInput::open(path.string());
+  if (!in) throw Error(path.string() + ": cannot read image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  int depth = CV_8U;
+  if (spec.format == OIIO::TypeDesc::UINT16) depth = CV_16U;
+  if (spec.format == OIIO::TypeDesc::FLOAT || spec.format == OIIO::TypeDesc::HALF) depth = CV_32F;
+  cv::Mat image(spec.height, spec.width, CV_MAKETYPE(depth, spec.nchannels));
+  if (!in->read_image(0, 0, 0, spec.nchannels, oiio_type(depth), image.data)) {
+    throw Error(path.string() + ": cannot decode image: " + in->geterror());
+  }
+  in->close();
+  return image;
+}
+
+}  // namespace simcap
