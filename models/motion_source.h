@@ -1,0 +1,34 @@
+// Where an actor's motion comes from: a motion-capture file (retargeted to the humanoid) or a
+// procedural generator. One entry point turns either into a Motion at the renderer's frame rate.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "models/motion.h"
+#include "models/skeleton.h"
+
+namespace simcap {
+
+// Deterministic procedural motions for the built-in default and for tests.
+struct ProceduralSpec {
+  // One of: "stand" (neutral stance with slight sway), "tpose", "walk_in_place", "walk_path"
+  // (walk along a circle of `path_radius`), "arm_raise" (both arms up and down), "turn" (a turn
+  // on the spot).
+  std::string kind = "walk_path";
+  double duration_s = 4.0;
+  double speed_m_s = 1.2;     // walking speed (walk_path) or step rate scale (walk_in_place)
+  double path_radius = 1.0;   // metres (walk_path)
+};
+
+struct MotionSource {
+  std::filesystem::path bvh;         // when not empty: a BVH file; otherwise `procedural`
+  double bvh_metres_per_unit = 0.0;  // 0: detect from the skeleton's size (CMU: 0.0254 / 0.45)
+  ProceduralSpec procedural;
+};
+
+// The motion of `source` for `skeleton`, sampled at `fps` (BVH clips are retargeted and
+// resampled with slerp). Throws Error naming the file and line for bad motion files.
+Motion load_motion(const MotionSource& source, const Skeleton& skeleton, double fps);
+
+}  // namespace simcap
