@@ -38,6 +38,7 @@ struct BodyShape {
 BodyMesh build_body_mesh(const Skeleton& skeleton, const BodyShape& shape = {});
 
 // Linear-blend skinning of a BodyMesh. Built once per body; skin() is called every frame.
+// It keeps a pointer to the mesh, which must outlive it.
 class Skinner {
  public:
   Skinner(const Skeleton& skeleton, const BodyMesh& mesh);

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "models/motion.h"
 #include "models/skeleton.h"
@@ -19,6 +20,8 @@ struct ProceduralSpec {
   double duration_s = 4.0;
   double speed_m_s = 1.2;     // walking speed (walk_path) or step rate scale (walk_in_place)
   double path_radius = 1.0;   // metres (walk_path)
+  // Total turn in degrees, counter-clockwise seen from above (turn).
+  double turn_degrees = 360.0;
 };
 
 struct MotionSource {
@@ -30,5 +33,14 @@ struct MotionSource {
 // The motion of `source` for `skeleton`, sampled at `fps` (BVH clips are retargeted and
 // resampled with slerp). Throws Error naming the file and line for bad motion files.
 Motion load_motion(const MotionSource& source, const Skeleton& skeleton, double fps);
+
+// The procedural motion `spec` for `skeleton` (H-Anim names, as from build_humanoid) at `fps`.
+// Walking gaits plant each foot flat (heel rising before toe-off) where it lands, so stance feet
+// neither slide nor leave the floor; legs follow by analytic two-bone IK, arms swing against the
+// legs. Throws Error for an unknown kind or a skeleton without the H-Anim leg and arm joints.
+Motion generate_procedural(const ProceduralSpec& spec, const Skeleton& skeleton, double fps);
+
+// The kinds generate_procedural knows, in the order of ProceduralSpec's comment.
+const std::vector<std::string>& procedural_kinds();
 
 }  // namespace simcap

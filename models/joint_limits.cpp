@@ -1,0 +1,291 @@
+#include "models/joint_limits.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "core/error.h"
+
+namespace simcap {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double deg(double d) {
+  return d * kPi / 180.0;
+}
+
+const Eigen::Vector3d kX = Eigen::Vector3d::UnitX();
+const Eigen::Vector3d kY = Eigen::Vector3d::UnitY();
+const Eigen::Vector3d kZ = Eigen::Vector3d::UnitZ();
+
+// A DOF whose limits are a source's range converted by angle = sign * source_angle + offset.
+DofLimit converted(std::string name, const Eigen::Vector3d& axis, double source_lower,
+                   double source_upper, double sign, double offset, std::string source) {
+  const double a = sign * source_lower + offset, b = sign * source_upper + offset;
+  return {std::move(name), axis, std::min(a, b), std::max(a, b), std::move(source), sign, offset};
+}
+
+DofLimit direct(std::string name, const Eigen::Vector3d& axis, double lower, double upper,
+                std::string source) {
+  return converted(std::move(name), axis, lower, upper, 1.0, 0.0, std::move(source));
+}
+
+// Moschini's torso frame has X forward, Y to the left and Z up (Table 5.3: the head is at +Z,
+// the left shoulder at +Y), so his X, Y, Z are simcap's Z, X, Y. His zero pose has the arms
+// straight out to the sides: his shoulder chain R_x(t1) R_z(t2) R_y(t3) in his axes equals
+// R_z(t1 + pi/2) R_x(t2) R_y(-t3) R_z(-pi/2) in simcap's, i.e. simcap's shoulder angles are
+// (t1 + pi/2, t2, -t3) from the arm-down neutral pose, and the elbow's "Z shoulder" axis becomes
+// +X. The right shoulder (1) range [0, 2 pi] is centred on pi (the right arm out to the side),
+// so its offset is pi/2 - 2 pi. Legs and neck start from the same pose as simcap's.
+std::vector<JointLimits> make_moschini() {
+  const std::string t = "Moschini 2009 Table 5.1, ";
+  auto m = [&](std::string name, const Eigen::Vector3d& axis, double lo, double hi,
+               const std::string& what, double sign = 1.0, double offset = 0.0) {
+    return converted(std::move(name), axis, lo, hi, sign, offset, t + what);
+  };
+  const double h = kPi / 2;
+  return {
+      {"vc7",
+       {m("vc7_lateral", kZ, -h, h, "theta1 Neck(1), X torso [-pi/2, pi/2]"),
+        m("vc7_flexion", kX, -h, h, "theta2 Neck(2), Y torso [-pi/2, pi/2]")}},
+      {"l_hip",
+       {m("l_hip_abduction", kZ, -kPi / 3, h, "theta11 Left Hip(1), X torso [-pi/3, pi/2]"),
+        m("l_hip_flexion", kX, -kPi, h, "theta13 Left Hip(2), Y torso [-pi, pi/2]")}},
+      {"l_knee", {m("l_knee_flexion", kX, 0, kPi, "theta15 Left Knee, Y hip [0, pi]")}},
+      {"r_hip",
+       {m("r_hip_abduction", kZ, -h, kPi / 3, "theta12 Right Hip(1), X torso [-pi/2, pi/3]"),
+        m("r_hip_flexion", kX, -kPi, h, "theta14 Right Hip(2), Y torso [-pi, pi/2]")}},
+      {"r_knee", {m("r_knee_flexion", kX, 0, kPi, "theta16 Right Knee, Y hip [0, pi]")}},
+      {"l_shoulder",
+       {m("l_shoulder_abduction", kZ, -kPi, kPi,
+          "theta3 Left Shoulder(1), X torso [-pi, pi], +pi/2 (thesis zero: arm out sideways)", 1,
+          h),
+        m("l_shoulder_flexion", kX, -kPi, h, "theta5 Left Shoulder(2), Z torso [-pi, pi/2]"),
+        m("l_shoulder_twist", kY, -h, 3 * kPi / 4,
+          "theta7 Left Shoulder(3), Y shoulder [-pi/2, 3pi/4], negated", -1)}},
+      {"l_elbow", {m("l_elbow_flexion", kX, -kPi, 0, "theta9 Left Elbow, Z shoulder [-pi, 0]")}},
+      {"r_shoulder",
+       {m("r_shoulder_abduction", kZ, 0, 2 * kPi,
+          "theta4 Right Shoulder(1), X torso [0, 2pi], -3pi/2 (thesis zero: arm out sideways)", 1,
+          h - 2 * kPi),
+        m("r_shoulder_flexion", kX, -kPi, h, "theta6 Right Shoulder(2), Z torso [-pi, pi/2]"),
+        m("r_shoulder_twist", kY, -3 * kPi / 4, h,
+          "theta8 Right Shoulder(3), Y shoulder [-3pi/4, pi/2], negated", -1)}},
+      {"r_elbow", {m("r_elbow_flexion", kX, -kPi, 0, "theta10 Right Elbow, Z shoulder [-pi, 0]")}},
+  };
+}
+
+// Gomez Jauregui names the angles as MPEG-4 BAPs (Table 2-2) on an arms-down H-Anim model, whose
+// axes are simcap's: flexion and tilt about X, abduct and roll about Z, twisting and torsion
+// about Y. The wrist's flexion is about Z and its pivot about X because the palm faces the thigh.
+// The thesis gives no axes or composition order; these are inferred from the BAP names.
+std::vector<JointLimits> make_gomez() {
+  const std::string t = "Gomez Jauregui 2011 Table 2-1, ";
+  auto g = [&](std::string name, const Eigen::Vector3d& axis, double lo, double hi,
+               const std::string& what) {
+    return direct(std::move(name), axis, deg(lo), deg(hi), t + what);
+  };
+  return {
+      {"vl5",
+       {g("vl5_lateral", kZ, -45, 45, "#2 humanoid root roll (BAP vl5_roll) [-45, 45] deg"),
+        g("vl5_flexion", kX, -45, 45, "#3 humanoid root tilt (BAP vl5_tilt) [-45, 45] deg"),
+        g("vl5_twist", kY, -180, 180,
+          "#1 humanoid root torsion (BAP vl5_torsion) [-180, 180] deg")}},
+      {"skullbase",
+       {g("skullbase_lateral", kZ, -10, 10, "#4 neck roll [-10, 10] deg"),
+        g("skullbase_flexion", kX, -10, 10, "#6 neck tilt [-10, 10] deg"),
+        g("skullbase_twist", kY, -10, 10, "#5 neck torsion [-10, 10] deg")}},
+      {"l_shoulder",
+       {g("l_shoulder_abduction", kZ, -20, 100, "#9 left shoulder abduct [-20, 100] deg"),
+        g("l_shoulder_flexion", kX, -110, 25, "#7 left shoulder flexion [-110, 25] deg"),
+        g("l_shoulder_twist", kY, -60, 30, "#8 left shoulder twisting [-60, 30] deg")}},
+      {"l_elbow", {g("l_elbow_flexion", kX, -150, 0, "#13 left elbow flexion [-150, 0] deg")}},
+      {"l_radiocarpal",
+       {g("l_radiocarpal_flexion", kZ, -20, 20, "#15 left wrist flexion [-20, 20] deg"),
+        g("l_radiocarpal_pivot", kX, -37, 27, "#17 left wrist pivot [-37, 27] deg"),
+        g("l_radiocarpal_twist", kY, -100, 100, "#16 left wrist twisting [-100, 100] deg")}},
+      {"r_shoulder",
+       {g("r_shoulder_abduction", kZ, -100, 20, "#12 right shoulder abduct [-100, 20] deg"),
+        g("r_shoulder_flexion", kX, -110, 25, "#10 right shoulder flexion [-110, 25] deg"),
+        g("r_shoulder_twist", kY, -30, 60, "#11 right shoulder twisting [-30, 60] deg")}},
+      {"r_elbow", {g("r_elbow_flexion", kX, -150, 0, "#14 right elbow flexion [-150, 0] deg")}},
+      {"r_radiocarpal",
+       {g("r_radiocarpal_flexion", kZ, -20, 20, "#18 right wrist flexion [-20, 20] deg"),
+        g("r_radiocarpal_pivot", kX, -37, 27, "#20 right wrist pivot [-37, 27] deg"),
+        g("r_radiocarpal_twist", kY, -100, 100, "#19 right wrist twisting [-100, 100] deg")}},
+  };
+}
+
+const DofLimit& pick(const std::vector<JointLimits>& table, std::string_view dof) {
+  for (const JointLimits& j : table) {
+    for (const DofLimit& d : j.dofs) {
+      if (d.name == dof) return d;
+    }
+  }
+  throw Error("joint limits: no DOF '" + std::string(dof) + "' in the source table");
+}
+
+// Anatomical ranges for what neither thesis constrains. AAOS: American Academy of Orthopaedic
+// Surgeons, "Joint Motion: Method of Measuring and Recording" (1965), average adult ranges as
+// tabulated in Norkin & White, "Measurement of Joint Motion", Appendix A. Regional spine ranges
+// are shared equally among the simcap joints of the region (a simcap choice).
+std::vector<JointLimits> make_humanoid() {
+  const auto& mo = moschini_joint_limits();
+  const auto& go = gomez_joint_limits();
+  const std::string aaos = "AAOS 1965 (Norkin & White App. A): ";
+  std::vector<JointLimits> out;
+
+  const std::string sacroiliac =
+      "Sturesson et al. 1989 (Spine 14:162): in vivo sacroiliac rotation of a few degrees; "
+      "simcap allows 4 deg";
+  out.push_back({"sacroiliac",
+                 {direct("sacroiliac_lateral", kZ, deg(-4), deg(4), sacroiliac),
+                  direct("sacroiliac_flexion", kX, deg(-4), deg(4), sacroiliac),
+                  direct("sacroiliac_twist", kY, deg(-4), deg(4), sacroiliac)}});
+  const std::string thoracolumbar =
+      "thoracolumbar flexion 80, extension 25, lateral flexion 35, rotation 45 deg, "
+      "/6 over vl5..vt1";
+  for (const char* j : {"vl5", "vl3", "vl1", "vt10", "vt6", "vt1"}) {
+    const std::string n(j);
+    out.push_back(
+        {n,
+         {direct(n + "_lateral", kZ, deg(-35.0 / 6), deg(35.0 / 6), aaos + thoracolumbar),
+          direct(n + "_flexion", kX, deg(-25.0 / 6), deg(80.0 / 6), aaos + thoracolumbar),
+          direct(n + "_twist", kY, deg(-45.0 / 6), deg(45.0 / 6), aaos + thoracolumbar)}});
+  }
+  const std::string cervical =
+      "cervical flexion 45, extension 45, lateral flexion 45, rotation 60 deg, "
+      "/3 over vc7, vc4, skullbase";
+  out.push_back({"vc7",
+                 {pick(mo, "vc7_lateral"), pick(mo, "vc7_flexion"),
+                  direct("vc7_twist", kY, deg(-20), deg(20), aaos + cervical)}});
+  for (const char* j : {"vc4", "skullbase"}) {
+    const std::string n(j);
+    out.push_back({n,
+                   {direct(n + "_lateral", kZ, deg(-15), deg(15), aaos + cervical),
+                    direct(n + "_flexion", kX, deg(-15), deg(15), aaos + cervical),
+                    direct(n + "_twist", kY, deg(-20), deg(20), aaos + cervical)}});
+  }
+
+  for (const auto& [side, sign] : {std::pair{"l_", 1.0}, std::pair{"r_", -1.0}}) {
+    const std::string s(side);
+    out.push_back({s + "hip",
+                   {pick(mo, s + "hip_abduction"), pick(mo, s + "hip_flexion"),
+                    direct(s + "hip_twist", kY, deg(-45), deg(45),
+                           aaos + "hip medial rotation 45, lateral rotation 45 deg")}});
+    out.push_back({s + "knee", {pick(mo, s + "knee_flexion")}});
+    // Inversion turns the sole towards the midline: negative about +Z on the left foot.
+    out.push_back(
+        {s + "talocrural",
+         {direct(s + "talocrural_inversion", kZ, std::min(sign * deg(-35), sign * deg(15)),
+                 std::max(sign * deg(-35), sign * deg(15)),
+                 aaos + "inversion 35, eversion 15 deg (subtalar, lumped into the ankle)"),
+          direct(s + "talocrural_flexion", kX, deg(-20), deg(50),
+                 aaos + "dorsiflexion 20, plantar flexion 50 deg")}});
+    out.push_back({s + "metatarsophalangeal_2",
+                   {direct(s + "metatarsophalangeal_2_flexion", kX, deg(-40), deg(40),
+                           aaos + "lesser toes MTP flexion 40, extension 40 deg")}});
+  }
+  for (const auto& [side, sign] : {std::pair{"l_", 1.0}, std::pair{"r_", -1.0}}) {
+    const std::string s(side);
+    const std::string neumann = "Neumann 2010, Kinesiology of the Musculoskeletal System, ch. 5: ";
+    out.push_back(
+        {s + "sternoclavicular",
+         {direct(s + "sternoclavicular_elevation", kZ, std::min(sign * deg(-10), sign * deg(45)),
+                 std::max(sign * deg(-10), sign * deg(45)),
+                 neumann + "elevation 45, depression 10 deg"),
+          direct(s + "sternoclavicular_protraction", kY, deg(-15), deg(15),
+                 neumann + "protraction and retraction 15 deg each")}});
+    out.push_back({s + "shoulder",
+                   {pick(mo, s + "shoulder_abduction"), pick(mo, s + "shoulder_flexion"),
+                    pick(mo, s + "shoulder_twist")}});
+    out.push_back({s + "elbow", {pick(mo, s + "elbow_flexion")}});
+    out.push_back({s + "radiocarpal",
+                   {pick(go, s + "radiocarpal_flexion"), pick(go, s + "radiocarpal_pivot"),
+                    pick(go, s + "radiocarpal_twist")}});
+  }
+  return out;
+}
+
+std::string format(const char* fmt, double a, double b) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, a, b);
+  return buf;
+}
+
+char axis_letter(const Eigen::Vector3d& axis) {
+  if (axis == kX) return 'X';
+  if (axis == kY) return 'Y';
+  if (axis == kZ) return 'Z';
+  throw Error("joint limits: a DOF axis must be +X, +Y or +Z");
+}
+
+}  // namespace
+
+const std::vector<JointLimits>& moschini_joint_limits() {
+  static const std::vector<JointLimits> table = make_moschini();
+  return table;
+}
+
+const std::vector<JointLimits>& gomez_joint_limits() {
+  static const std::vector<JointLimits> table = make_gomez();
+  return table;
+}
+
+const std::vector<JointLimits>& humanoid_joint_limits() {
+  static const std::vector<JointLimits> table = make_humanoid();
+  return table;
+}
+
+const JointLimits* find_joint_limits(const std::vector<JointLimits>& table,
+                                     std::string_view joint) {
+  for (const JointLimits& j : table) {
+    if (j.joint == joint) return &j;
+  }
+  return nullptr;
+}
+
+Eigen::Quaterniond dof_rotation(const JointLimits& joint, std::span<const double> angles) {
+  if (angles.size() != joint.dofs.size()) {
+    throw Error("joint '" + joint.joint + "' has " + std::to_string(joint.dofs.size()) +
+                " degrees of freedom, got " + std::to_string(angles.size()) + " angles");
+  }
+  Eigen::Quaterniond q = Eigen::Quaterniond::Identity();
+  for (size_t i = 0; i < angles.size(); ++i) {
+    q = q * Eigen::Quaterniond(Eigen::AngleAxisd(angles[i], joint.dofs[i].axis));
+  }
+  return q;
+}
+
+std::vector<double> dof_angles(const JointLimits& joint, const Eigen::Quaterniond& rotation) {
+  // R = R_z(a) R_x(b) R_y(c): row 2 is (-cos b sin c, sin b, cos b cos c) and column 1 is
+  // (-sin a cos b, cos a cos b, sin b).
+  const Eigen::Matrix3d r = rotation.normalized().toRotationMatrix();
+  const double b = std::asin(std::clamp(r(2, 1), -1.0, 1.0));
+  const double a = std::atan2(-r(0, 1), r(1, 1));
+  const double c = std::atan2(-r(2, 0), r(2, 2));
+  std::vector<double> out;
+  for (const DofLimit& d : joint.dofs) {
+    const char axis = axis_letter(d.axis);
+    out.push_back(axis == 'Z' ? a : axis == 'X' ? b : c);
+  }
+  return out;
+}
+
+std::string joint_limits_markdown(const std::vector<JointLimits>& table) {
+  std::string out =
+      "| H-Anim joint | DOF (URDF joint) | axis | lower (deg) | upper (deg) | lower (rad) | "
+      "upper (rad) | source |\n"
+      "|---|---|---|---|---|---|---|---|\n";
+  for (const JointLimits& j : table) {
+    for (const DofLimit& d : j.dofs) {
+      out += "| " + j.joint + " | " + d.name + " | +" + axis_letter(d.axis) + " | " +
+             format("%.1f | %.1f", d.lower * 180 / kPi, d.upper * 180 / kPi) + " | " +
+             format("%.4f | %.4f", d.lower, d.upper) + " | " + d.source + " |\n";
+    }
+  }
+  return out;
+}
+
+}  // namespace simcap
