@@ -3,10 +3,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/camera.h"
@@ -95,5 +97,14 @@ Scene load_scene(const std::filesystem::path& path, const std::vector<std::strin
 // The scene as YAML with every default filled in (the dataset's scene.yaml); load_scene() of it
 // gives the same scene back.
 std::string scene_to_yaml(const Scene& scene);
+
+// Where an actor's motion is put in the room: every pose (root path and joints, in the motion's
+// own frame) is rotated by yaw_rad about the world +Y axis through the origin, then moved by
+// offset: world = placement * motion point.
+Eigen::Isometry3d actor_placement(const Actor& actor);
+
+// A scene shipped in simcap's scenes/ folder, by name: "studio4" (the default), "studio8",
+// "occluders", "monocular". Throws Error listing the shipped scenes when there is no such one.
+std::filesystem::path shipped_scene_path(std::string_view name);
 
 }  // namespace simcap
