@@ -24,7 +24,7 @@ OIIO::TypeDesc oiio_type(int depth) {
 
 }  // namespace
 
-void write_image(const fs::path& path, const cv::Mat& image) {
+void write_image(const fs::path& path, const cv::Mat& image, const ImageCompression& compression) {
   const std::string ext = path.extension().string();
   const bool exr = ext == ".exr";
   const bool png = ext == ".png";
@@ -40,7 +40,14 @@ void write_image(const fs::path& path, const cv::Mat& image) {
   auto out = OIIO::ImageOutput::create(file.temp_path().string());
   if (!out) throw Error(path.string() + ": " + OIIO::geterror());
   OIIO::ImageSpec spec(data.cols, data.rows, data.channels(), oiio_type(depth));
-  if (exr) spec.attribute("compression", "zip");
+  // No timestamp (OpenEXR files get one by default): equal images give byte-identical files.
+  spec.attribute("DateTime", "");
+  if (exr) spec.attribute("compression", compression.exr);
+  if (png) {
+    spec.attribute("png:compressionLevel", compression.png_level);
+    // 8 is libpng's PNG_FILTER_NONE; left alone, libpng tries every filter on every row.
+    if (!compression.png_filter) spec.attribute("png:filter", 8);
+  }
   if (!out->open(file.temp_path().string(), spec) ||
       !out->write_image(oiio_type(depth), data.data) || !out->close()) {
     throw Error(path.string() + ": write failed: " + out->geterror());

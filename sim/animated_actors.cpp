@@ -1,0 +1,121 @@
+#include "sim/animated_actors.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "models/humanoid.h"
+#include "models/motion_source.h"
+
+namespace simcap {
+
+struct AnimatedActors::Group {
+  Skeleton skeleton;
+  BodyMesh mesh;
+  std::unique_ptr<Skinner> skinner;
+  Motion motion;
+  long start_frame = 0;  // scene frame at which the motion's first frame plays
+  std::vector<int> actors;
+  int body = -1;
+};
+
+namespace {
+
+bool same_motion(const Motion& a, const Motion& b) {
+  if (a.frames.size() != b.frames.size()) return false;
+  for (size_t f = 0; f < a.frames.size(); ++f) {
+    const Pose &p = a.frames[f], &q = b.frames[f];
+    if (p.root_position != q.root_position || p.rotations.size() != q.rotations.size())
+      return false;
+    for (size_t j = 0; j < p.rotations.size(); ++j) {
+      if (p.rotations[j].coeffs() != q.rotations[j].coeffs()) return false;
+    }
+  }
+  return true;
+}
+
+bool same_body(const Skeleton& sa, const BodyMesh& a, const Skeleton& sb, const BodyMesh& b) {
+  if (sa.size() != sb.size()) return false;
+  for (int j = 0; j < sa.size(); ++j) {
+    if (sa[j].name != sb[j].name || sa[j].center != sb[j].center) return false;
+  }
+  return a.vertices == b.vertices && a.triangles == b.triangles;
+}
+
+}  // namespace
+
+AnimatedActors::AnimatedActors(const Scene& scene)
+    : fps_(scene.render.fps), first_frame_(scene.render.first_frame) {
+  if (scene.actors.empty()) throw Error("scene " + scene.source.string() + ": it has no actors");
+  for (const Actor& actor : scene.actors) {
+    auto g = std::make_unique<Group>();
+    g->skeleton = build_humanoid(actor.body);
+    g->mesh = build_body_mesh(g->skeleton, actor.shape);
+    g->motion = load_motion(actor.motion, g->skeleton, fps_);
+    if (g->motion.frames.empty()) {
+      throw Error("actor '" + actor.name + "': its motion has no frames");
+    }
+    g->start_frame = std::lround(actor.time_offset_s * fps_);
+    const int actor_index = static_cast<int>(group_of_.size());
+    auto shared = std::find_if(groups_.begin(), groups_.end(), [&](const auto& other) {
+      return other->start_frame == g->start_frame &&
+             same_body(other->skeleton, other->mesh, g->skeleton, g->mesh) &&
+             same_motion(other->motion, g->motion);
+    });
+    if (shared == groups_.end()) {
+      g->skinner = std::make_unique<Skinner>(g->skeleton, g->mesh);
+      groups_.push_back(std::move(g));
+      shared = groups_.end() - 1;
+    }
+    (*shared)->actors.push_back(actor_index);
+    group_of_.push_back(static_cast<int>(shared - groups_.begin()));
+    colors_.push_back(actor.colors);
+    placement_.push_back(Eigen::Translation3d(actor.offset) *
+                         Eigen::AngleAxisd(actor.yaw_rad, Eigen::Vector3d::UnitY()));
+    PosedActor p;
+    p.name = actor.name;
+    p.skeleton = &(*shared)->skeleton;
+    posed_.push_back(std::move(p));
+    const long end = (*shared)->start_frame + static_cast<long>((*shared)->motion.frames.size());
+    frames_available_ = std::max<long>(frames_available_, end - first_frame_);
+  }
+}
+
+AnimatedActors::~AnimatedActors() = default;
+
+void AnimatedActors::attach(EmbreeScene& embree) {
+  embree_ = &embree;
+  for (auto& g : groups_) g->body = embree.add_body(g->mesh, g->actors.size() > 1);
+  // Actors are added in scene order so that Embree's actor index is the scene's.
+  for (size_t a = 0; a < posed_.size(); ++a) {
+    embree.add_actor(groups_[group_of_[a]]->body, colors_[a]);
+    embree.set_actor_transform(static_cast<int>(a), placement_[a]);
+  }
+  pose(0);
+}
+
+void AnimatedActors::pose(int frame) {
+  for (auto& g : groups_) {
+    const long k = std::clamp<long>(first_frame_ + frame - g->start_frame, 0,
+                                    static_cast<long>(g->motion.frames.size()) - 1);
+    const Pose& local = g->motion.frames[k];
+    for (const int a : g->actors) {
+      PosedActor& p = posed_[a];
+      p.pose = local;
+      p.pose.root_position = placement_[a] * local.root_position;
+      p.pose.rotations[0] = Eigen::Quaterniond(placement_[a].linear()) * local.rotations[0];
+      p.joint_world = forward_kinematics(g->skeleton, p.pose);
+    }
+    if (!embree_) continue;
+    // A body worn by one actor is skinned in world coordinates; a shared one in the motion's
+    // own frame, which each actor's instance transform then places.
+    if (g->actors.size() == 1) {
+      g->skinner->skin(posed_[g->actors[0]].joint_world, embree_->body_vertices(g->body));
+    } else {
+      g->skinner->skin(forward_kinematics(g->skeleton, local), embree_->body_vertices(g->body));
+    }
+    embree_->body_updated(g->body);
+  }
+}
+
+}  // namespace simcap

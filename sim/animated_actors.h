@@ -1,0 +1,59 @@
+// The scene's actors in motion: each actor's skeleton, skinned body and motion, posed frame by
+// frame into the Embree scene. Actors whose body and motion are identical (a crowd sharing one
+// clip) share one skinned mesh through Embree instancing and differ only by their transform.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "models/body_mesh.h"
+#include "models/motion.h"
+#include "models/pose.h"
+#include "models/skeleton.h"
+#include "scenes/scene.h"
+#include "sim/embree_scene.h"
+
+namespace simcap {
+
+// One actor at the current frame.
+struct PosedActor {
+  std::string name;
+  const Skeleton* skeleton = nullptr;
+  Pose pose;  // in world coordinates: the actor's yaw and offset are applied to the root
+  std::vector<Eigen::Isometry3d> joint_world;  // forward_kinematics(pose)
+};
+
+class AnimatedActors {
+ public:
+  // Builds every actor's skeleton, body and motion (at the scene's frame rate). Motion files
+  // are read here, so bad ones fail before anything is rendered.
+  explicit AnimatedActors(const Scene& scene);
+  ~AnimatedActors();
+
+  // Dataset frames from the scene's first frame until the last actor's motion has ended.
+  int frames_available() const { return frames_available_; }
+  // Adds the bodies and the actors (in scene order) to `embree` and poses them at frame 0.
+  void attach(EmbreeScene& embree);
+  // Poses every actor at dataset frame `frame` and updates their bodies in the attached scene;
+  // the caller commits it. Before its motion starts an actor holds the first pose, after it
+  // ends the last one.
+  void pose(int frame);
+  const std::vector<PosedActor>& posed() const { return posed_; }
+  // Number of distinct skinned bodies (fewer than actors when actors share one).
+  int body_count() const { return static_cast<int>(groups_.size()); }
+
+ private:
+  struct Group;
+  std::vector<std::unique_ptr<Group>> groups_;
+  std::vector<int> group_of_;                 // per actor
+  std::vector<Eigen::Isometry3d> placement_;  // per actor: yaw about +Y, then offset
+  std::vector<std::array<Rgb, kMaterialRegionCount>> colors_;  // per actor
+  std::vector<PosedActor> posed_;
+  EmbreeScene* embree_ = nullptr;
+  double fps_;
+  int first_frame_;
+  int frames_available_ = 1;
+};
+
+}  // namespace simcap

@@ -1,0 +1,243 @@
+#include "sim/embree_scene.h"
+
+#include <oneapi/tbb/parallel_for.h>
+
+#include <string>
+
+#include "core/error.h"
+#include "sim/srgb.h"
+
+namespace simcap {
+namespace {
+
+RTCGeometry new_triangle_geometry(RTCDevice device, const std::vector<Eigen::Vector3f>& vertices,
+                                  const std::vector<std::array<std::uint32_t, 3>>& triangles) {
+  RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+      g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices.size()));
+  auto* t = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+      g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), triangles.size()));
+  if (!v || !t) {
+    rtcReleaseGeometry(g);
+    throw Error("Embree: cannot allocate geometry buffers");
+  }
+  for (size_t i = 0; i < vertices.size(); ++i) {
+    for (int k = 0; k < 3; ++k) v[3 * i + k] = vertices[i][k];
+  }
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    for (int k = 0; k < 3; ++k) t[3 * i + k] = triangles[i][k];
+  }
+  return g;
+}
+
+}  // namespace
+
+EmbreeScene::Entry EmbreeScene::actor_entry(int actor) {
+  Entry e;
+  e.actor = actor;
+  return e;
+}
+
+EmbreeScene::EmbreeScene(BodyBvhUpdate body_update) : body_update_(body_update) {
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) throw Error("Embree: cannot create a device");
+  scene_ = rtcNewScene(device_);
+  // A low-quality scene build makes Embree keep one BVH per geometry under a small top-level
+  // BVH, so a frame only updates the bodies' BVHs; the static geometry's stays as built.
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_LOW);
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_DYNAMIC);
+}
+
+EmbreeScene::~EmbreeScene() {
+  for (auto& a : actors_) {
+    if (a.geometry && bodies_[a.body]->instanced_scene) rtcReleaseGeometry(a.geometry);
+  }
+  for (auto& b : bodies_) {
+    rtcReleaseGeometry(b->geometry);
+    if (b->instanced_scene) rtcReleaseScene(b->instanced_scene);
+  }
+  rtcReleaseScene(scene_);
+  rtcReleaseDevice(device_);
+}
+
+void EmbreeScene::check_device(const char* what) const {
+  const RTCError e = rtcGetDeviceError(device_);
+  if (e != RTC_ERROR_NONE) {
+    throw Error(std::string("Embree: ") + what + " failed (error " + std::to_string(e) + ")");
+  }
+}
+
+unsigned EmbreeScene::attach(RTCGeometry geometry, Entry entry) {
+  const unsigned id = rtcAttachGeometry(scene_, geometry);
+  if (entries_.size() <= id) entries_.resize(id + 1);
+  entries_[id] = entry;
+  return id;
+}
+
+void EmbreeScene::add_static(const TriangleMesh& mesh, const StaticLook& look, bool casts_shadows) {
+  if (mesh.triangles.empty()) return;
+  RTCGeometry g = new_triangle_geometry(device_, mesh.vertices, mesh.triangles);
+  rtcSetGeometryMask(g, casts_shadows ? kShadowCasterMask : kRoomMask);
+  rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
+  rtcCommitGeometry(g);
+  auto s = std::make_unique<StaticGeometry>();
+  s->look = look;
+  s->triangles = mesh.triangles;
+  s->normals = mesh.normals;
+  for (const auto& t : mesh.triangles) {
+    const Eigen::Vector3f a = mesh.vertices[t[0]];
+    s->face_normals.push_back(
+        (mesh.vertices[t[1]] - a).cross(mesh.vertices[t[2]] - a).normalized());
+  }
+  Entry e;
+  e.face_normals = s->face_normals.data();
+  e.vertex_normals = s->normals.empty() ? nullptr : s->normals.data();
+  e.triangles = s->triangles.data();
+  e.albedo = srgb_to_linear(look.color);
+  e.texture = look.texture.get();
+  e.tex_u = look.tex_u;
+  e.tex_v = look.tex_v;
+  statics_.push_back(std::move(s));
+  attach(g, e);
+  rtcReleaseGeometry(g);
+  check_device("adding static geometry");
+}
+
+int EmbreeScene::add_body(const BodyMesh& mesh, bool instanced) {
+  auto body = std::make_unique<Body>();
+  body->mesh = &mesh;
+  const size_t nv = mesh.vertices.size(), nt = mesh.triangles.size();
+  body->vertices.assign(3 * nv + 1, 0.f);
+  for (size_t i = 0; i < nv; ++i) {
+    for (int k = 0; k < 3; ++k) body->vertices[3 * i + k] = mesh.vertices[i][k];
+  }
+  body->face_normals.resize(nt);
+  body->vertex_normals.resize(nv);
+  body->vertex_face_start.assign(nv + 1, 0);
+  for (const auto& t : mesh.triangles) {
+    for (const auto v : t) ++body->vertex_face_start[v + 1];
+  }
+  for (size_t i = 0; i < nv; ++i) body->vertex_face_start[i + 1] += body->vertex_face_start[i];
+  body->vertex_faces.resize(3 * nt);
+  std::vector<std::uint32_t> fill(body->vertex_face_start.begin(),
+                                  body->vertex_face_start.end() - 1);
+  for (size_t f = 0; f < nt; ++f) {
+    for (const auto v : mesh.triangles[f])
+      body->vertex_faces[fill[v]++] = static_cast<std::uint32_t>(f);
+  }
+
+  RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, body->vertices.data(),
+                             0, 3 * sizeof(float), nv);
+  auto* t = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+      g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), nt));
+  if (!t) {
+    rtcReleaseGeometry(g);
+    throw Error("Embree: cannot allocate the body's index buffer");
+  }
+  for (size_t i = 0; i < nt; ++i) {
+    for (int k = 0; k < 3; ++k) t[3 * i + k] = mesh.triangles[i][k];
+  }
+  rtcSetGeometryBuildQuality(
+      g, body_update_ == BodyBvhUpdate::refit ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_LOW);
+  rtcSetGeometryMask(g, kShadowCasterMask);
+  body->geometry = g;
+  if (instanced) {
+    body->instanced_scene = rtcNewScene(device_);
+    rtcSetSceneBuildQuality(body->instanced_scene, RTC_BUILD_QUALITY_LOW);
+    rtcSetSceneFlags(body->instanced_scene, RTC_SCENE_FLAG_DYNAMIC);
+    rtcAttachGeometry(body->instanced_scene, g);
+  }
+  bodies_.push_back(std::move(body));
+  body_updated(static_cast<int>(bodies_.size()) - 1);
+  check_device("adding a body");
+  return static_cast<int>(bodies_.size()) - 1;
+}
+
+int EmbreeScene::add_actor(int body_index, const std::array<Rgb, kMaterialRegionCount>& colors) {
+  Body& body = *bodies_.at(body_index);
+  Actor a;
+  a.body = body_index;
+  for (int i = 0; i < kMaterialRegionCount; ++i) a.albedo[i] = srgb_to_linear(colors[i]);
+  const int index = static_cast<int>(actors_.size());
+  if (body.instanced_scene) {
+    a.geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryMask(a.geometry, kShadowCasterMask);
+    rtcSetGeometryInstancedScene(a.geometry, body.instanced_scene);
+    attach(a.geometry, actor_entry(index));
+  } else {
+    if (body.attached) throw Error("a body that is not instanced can be worn by one actor only");
+    a.geometry = body.geometry;
+    attach(a.geometry, actor_entry(index));
+    body.attached = true;
+  }
+  actors_.push_back(a);
+  set_actor_transform(index, Eigen::Isometry3d::Identity());
+  check_device("adding an actor");
+  return index;
+}
+
+float* EmbreeScene::body_vertices(int body) {
+  return bodies_.at(body)->vertices.data();
+}
+
+void EmbreeScene::body_updated(int body_index) {
+  Body& b = *bodies_.at(body_index);
+  const auto& tris = b.mesh->triangles;
+  const float* v = b.vertices.data();
+  auto vertex = [v](std::uint32_t i) {
+    return Eigen::Vector3f(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+  };
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, tris.size(), 4096), [&](const auto& r) {
+    for (size_t f = r.begin(); f != r.end(); ++f) {
+      const Eigen::Vector3f a = vertex(tris[f][0]);
+      b.face_normals[f] = (vertex(tris[f][1]) - a).cross(vertex(tris[f][2]) - a);
+    }
+  });
+  // Area-weighted vertex normals: summing unnormalised face normals weights each by its area.
+  tbb::parallel_for(
+      tbb::blocked_range<size_t>(0, b.vertex_normals.size(), 4096), [&](const auto& r) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+          Eigen::Vector3f n = Eigen::Vector3f::Zero();
+          for (auto k = b.vertex_face_start[i]; k < b.vertex_face_start[i + 1]; ++k) {
+            n += b.face_normals[b.vertex_faces[k]];
+          }
+          const float len = n.norm();
+          b.vertex_normals[i] = len > 0 ? Eigen::Vector3f(n / len) : Eigen::Vector3f::UnitY();
+        }
+      });
+  rtcUpdateGeometryBuffer(b.geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+  rtcCommitGeometry(b.geometry);
+  if (b.instanced_scene) rtcCommitScene(b.instanced_scene);
+}
+
+void EmbreeScene::set_actor_transform(int actor, const Eigen::Isometry3d& object_to_world) {
+  Actor& a = actors_.at(actor);
+  if (!bodies_[a.body]->instanced_scene) return;
+  const Eigen::Matrix<float, 3, 4> m = object_to_world.matrix().topRows<3>().cast<float>();
+  rtcSetGeometryTransform(a.geometry, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, m.data());
+  rtcCommitGeometry(a.geometry);
+  a.rotation = m.leftCols<3>();
+}
+
+void EmbreeScene::set_actors_visible(bool visible) {
+  for (auto& a : actors_) {
+    if (visible) {
+      rtcEnableGeometry(a.geometry);
+    } else {
+      rtcDisableGeometry(a.geometry);
+    }
+    rtcCommitGeometry(a.geometry);
+  }
+}
+
+void EmbreeScene::commit() {
+  rtcCommitScene(scene_);
+  check_device("building the scene");
+}
+
+int EmbreeScene::actor_of(const HitRecord& hit) const {
+  return entries_[hit.inst_id != RTC_INVALID_GEOMETRY_ID ? hit.inst_id : hit.geom_id].actor;
+}
+
+}  // namespace simcap

@@ -1,0 +1,101 @@
+#include "sim/ground_truth.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace simcap {
+namespace {
+
+Visibility classify(const CameraRays& rays, const EmbreeScene& scene, int actor,
+                    const Eigen::Vector2d& pixel, double depth) {
+  const double w = rays.width(), h = rays.height();
+  if (!(depth > 0) ||
+      !(pixel.x() >= -0.5 && pixel.x() < w - 0.5 && pixel.y() >= -0.5 && pixel.y() < h - 0.5)) {
+    return Visibility::out_of_frame;
+  }
+  const int x = std::min(rays.width() - 1, static_cast<int>(std::floor(pixel.x() + 0.5)));
+  const int y = std::min(rays.height() - 1, static_cast<int>(std::floor(pixel.y() + 0.5)));
+  const Eigen::Vector3f d = rays.direction(x, y);
+  RTCRayHit rh{};
+  rh.ray.org_x = rays.origin().x();
+  rh.ray.org_y = rays.origin().y();
+  rh.ray.org_z = rays.origin().z();
+  rh.ray.dir_x = d.x();
+  rh.ray.dir_y = d.y();
+  rh.ray.dir_z = d.z();
+  rh.ray.tnear = 0.f;
+  rh.ray.tfar = std::numeric_limits<float>::infinity();
+  rh.ray.mask = ~0u;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  rtcIntersect1(scene.handle(), &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return Visibility::visible;
+  const double hit_depth = static_cast<double>(rh.ray.tfar) * rays.z_scale(x, y);
+  if (hit_depth >= depth - kVisibilityTolerance) return Visibility::visible;
+  HitRecord hit;
+  hit.geom_id = rh.hit.geomID;
+  hit.inst_id = rh.hit.instID[0];
+  return scene.actor_of(hit) == actor ? Visibility::self_occluded : Visibility::scene_occluded;
+}
+
+}  // namespace
+
+std::string_view visibility_name(Visibility v) {
+  switch (v) {
+    case Visibility::visible:
+      return "visible";
+    case Visibility::self_occluded:
+      return "self_occluded";
+    case Visibility::scene_occluded:
+      return "scene_occluded";
+    case Visibility::out_of_frame:
+      return "out_of_frame";
+  }
+  return "";
+}
+
+std::vector<int> truth_joints(const Skeleton& skeleton) {
+  std::vector<int> out;
+  for (int j = 0; j < skeleton.size(); ++j) {
+    if (!skeleton[j].is_site) out.push_back(j);
+  }
+  return out;
+}
+
+FrameTruth compute_frame_truth(int frame, const std::vector<PosedActor>& actors,
+                               const std::vector<CameraRays>& cameras, const EmbreeScene& scene) {
+  FrameTruth t;
+  t.frame = frame;
+  for (const PosedActor& a : actors) {
+    auto& pos = t.positions.emplace_back();
+    auto& rot = t.rotations.emplace_back();
+    for (const int j : truth_joints(*a.skeleton)) {
+      pos.push_back(a.joint_world[j].translation());
+      Eigen::Quaterniond q = a.pose.rotations[j].normalized();
+      if (q.w() < 0) q.coeffs() = -q.coeffs();
+      rot.push_back(q);
+    }
+  }
+  for (const CameraRays& rays : cameras) {
+    const Camera& cam = rays.camera();
+    auto& per_actor = t.views.emplace_back();
+    for (size_t a = 0; a < actors.size(); ++a) {
+      auto& joints = per_actor.emplace_back();
+      for (const Eigen::Vector3d& p : t.positions[a]) {
+        JointView v;
+        const Eigen::Vector3d c = cam.to_camera(p);
+        v.depth = c.z();
+        v.pixel = c.z() > 0 ? cam.project_camera(c)
+                            : Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+        v.visibility = classify(rays, scene, static_cast<int>(a), v.pixel, v.depth);
+        joints.push_back(v);
+      }
+    }
+  }
+  return t;
+}
+
+}  // namespace simcap

@@ -1,0 +1,281 @@
+#include "sim/render_job.h"
+
+#include <OpenImageIO/imageio.h>
+#include <assimp/version.h>
+#include <embree3/rtcore.h>
+#include <oneapi/tbb/info.h>
+#include <oneapi/tbb/parallel_pipeline.h>
+#include <oneapi/tbb/version.h>
+
+#include <Eigen/Core>
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <opencv2/core/version.hpp>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/progress.h"
+#include "scenes/scene.h"
+#include "sim/dataset_writer.h"
+#include "sim/ground_truth.h"
+#include "sim/render_setup.h"
+
+namespace simcap {
+namespace fs = std::filesystem;
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Json = nlohmann::ordered_json;
+
+// Frames in flight between rendering, image writing and the truth tables; each holds its
+// images (~11 MB for four VGA cameras), so this bounds memory.
+constexpr int kFramesInFlight = 4;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+Scene load_for_render(const fs::path& scene_file, const RenderOptions& options) {
+  if (!fs::exists(scene_file)) throw Error(scene_file.string() + ": scene file not found");
+  Scene scene = load_scene(scene_file, options.overrides);
+  if (options.seed) scene.render.seed = *options.seed;
+  if (!options.motion_override.empty()) {
+    if (!fs::is_regular_file(options.motion_override)) {
+      throw Error(options.motion_override.string() + ": motion file not found (--motion)");
+    }
+    if (scene.actors.empty()) throw Error("--motion: the scene has no actor to move");
+    MotionSource source;
+    source.bvh = fs::absolute(options.motion_override);
+    scene.actors[0].motion = source;
+  }
+  if (options.frames == 0 || options.frames < -1) {
+    throw Error("--frames: expected a positive number of frames, got " +
+                std::to_string(options.frames));
+  }
+  if (options.frames > 0) scene.render.frame_count = options.frames;
+  return scene;
+}
+
+// A simcap dataset announces itself by a meta.json with simcap's version in it.
+bool holds_dataset(const fs::path& dir) {
+  try {
+    const Json meta = Json::parse(read_text(dir / "meta.json"));
+    return meta.contains("simcap_version");
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+void remove_dataset(const fs::path& dir) {
+  const Json meta = Json::parse(read_text(dir / "meta.json"));
+  std::vector<std::string> entries = {"scene.yaml", "parts.json", "calibration", "background",
+                                      "gt"};
+  for (const auto& cam : meta.value("cameras", Json::array()))
+    entries.push_back(cam.get<std::string>());
+  entries.push_back("meta.json");
+  for (const auto& e : entries) {
+    std::error_code ec;
+    fs::remove_all(dir / e, ec);
+    if (ec) throw Error((dir / e).string() + ": cannot remove: " + ec.message());
+  }
+}
+
+// Checks what is in `out_dir` against the options before anything is written.
+void prepare_output(const fs::path& out_dir, const Scene& scene, const RenderOptions& options) {
+  std::error_code ec;
+  if (fs::exists(out_dir, ec) && !fs::is_directory(out_dir, ec)) {
+    throw Error(out_dir.string() + ": output exists and is not a folder");
+  }
+  const bool empty = !fs::exists(out_dir, ec) || fs::is_empty(out_dir, ec);
+  if (!empty && options.resume) {
+    if (!holds_dataset(out_dir) || !fs::exists(out_dir / "scene.yaml")) {
+      throw Error(out_dir.string() + ": --resume: the folder holds no simcap dataset");
+    }
+    // The same scene writes the same scene.yaml; only the frame count may grow.
+    Scene candidate = scene;
+    candidate.render.frame_count = load_scene(out_dir / "scene.yaml").render.frame_count;
+    if (read_text(out_dir / "scene.yaml") != scene_to_yaml(candidate)) {
+      throw Error(out_dir.string() +
+                  ": --resume: the dataset there was rendered from a different scene "
+                  "(compare its scene.yaml); render into a new folder or use --overwrite");
+    }
+  } else if (!empty && options.overwrite) {
+    if (!holds_dataset(out_dir)) {
+      throw Error(out_dir.string() +
+                  ": --overwrite: the folder is not empty and holds no simcap dataset "
+                  "(no meta.json); refusing to delete anything");
+    }
+    remove_dataset(out_dir);
+  } else if (!empty) {
+    throw Error(out_dir.string() +
+                ": output folder is not empty; use --resume to continue the render there, "
+                "--overwrite to replace it, or choose another folder");
+  }
+  fs::create_directories(out_dir, ec);
+  if (ec) throw Error(out_dir.string() + ": cannot create the output folder: " + ec.message());
+}
+
+Json library_versions() {
+  Json v;
+  v["embree"] = RTC_VERSION_STRING;
+  v["openimageio"] = OIIO_VERSION_STRING;
+  v["assimp"] = std::to_string(aiGetVersionMajor()) + "." + std::to_string(aiGetVersionMinor()) +
+                "." + std::to_string(aiGetVersionPatch());
+  v["opencv"] = CV_VERSION;
+  v["eigen"] = std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) +
+               "." + std::to_string(EIGEN_MINOR_VERSION);
+  v["onetbb"] = TBB_runtime_version();
+  v["nlohmann_json"] = std::to_string(NLOHMANN_JSON_VERSION_MAJOR) + "." +
+                       std::to_string(NLOHMANN_JSON_VERSION_MINOR) + "." +
+                       std::to_string(NLOHMANN_JSON_VERSION_PATCH);
+  return v;
+}
+
+Json describe(const Scene& scene, const fs::path& scene_file,
+              const std::vector<PosedActor>& actors) {
+  Json meta;
+  meta["simcap_version"] = SIMCAP_VERSION;
+  meta["libraries"] = library_versions();
+  meta["scene_file"] = fs::absolute(scene_file).lexically_normal().string();
+  meta["seed"] = scene.render.seed;
+  meta["fps"] = scene.render.fps;
+  meta["first_frame"] = scene.render.first_frame;
+  meta["frame_count"] = scene.render.frame_count;
+  meta["samples_per_pixel"] = scene.render.samples_per_pixel;
+  Json cams = Json::array();
+  for (const Camera& c : scene.cameras) cams.push_back(c.name);
+  meta["cameras"] = cams;
+  Json names = Json::array();
+  for (const PosedActor& a : actors) names.push_back(a.name);
+  meta["actors"] = names;
+  meta["conventions"] = {
+      {"frames", "dataset frame i shows scene time (first_frame + i) / fps"},
+      {"rgb", "8-bit sRGB PNG, Lambert shading in linear light"},
+      {"depth",
+       "float32 EXR, z-depth in metres (camera-frame z of the surface, not the distance "
+       "along the ray); +inf where the ray hits nothing"},
+      {"mask", actors.size() == 1 ? "8-bit PNG, 255 = the actor, 0 = anything else"
+                                  : "8-bit PNG, 1 + actor index (order of 'actors'), 0 = no actor"},
+      {"parts", "8-bit PNG, see parts.json"},
+      {"joints",
+       "H-Anim joint centres (end sites excluded); actors after the first are "
+       "prefixed '<actor>/'"},
+      {"visibility",
+       "ray through the joint's pixel centre; occluded when a surface lies more "
+       "than visibility_tolerance_m (z-depth) in front of the joint"},
+      {"visibility_tolerance_m", kVisibilityTolerance},
+      {"angles",
+       "local joint rotation relative to the neutral pose in the parent's frame, "
+       "unit quaternion with qw >= 0"}};
+  return meta;
+}
+
+}  // namespace
+
+RenderSummary render_dataset(const fs::path& scene_file, const fs::path& out_dir,
+                             const RenderOptions& options) {
+  const auto start = Clock::now();
+  Scene scene = load_for_render(scene_file, options);
+  RenderSetup setup(scene);
+  const int frames =
+      scene.render.frame_count > 0 ? scene.render.frame_count : setup.actors().frames_available();
+  scene.render.frame_count = frames;
+  prepare_output(out_dir, scene, options);
+
+  const auto& cameras = setup.cameras();
+  std::vector<std::string> camera_names;
+  for (const Camera& c : scene.cameras) camera_names.push_back(c.name);
+  DatasetWriter writer(out_dir, camera_names, scene.render.normals);
+  writer.remove_stale_temporaries();
+  Json meta = describe(scene, scene_file, setup.actors().posed());
+  meta["complete"] = false;
+  write_text_atomic(out_dir / "meta.json", meta.dump(2) + "\n");
+  writer.write_fixed_files(scene, *setup.actors().posed().at(0).skeleton);
+  if (!(options.resume && writer.backgrounds_complete())) {
+    writer.write_backgrounds(setup.render_background());
+  }
+  writer.open_truth(setup.actors().posed());
+
+  struct FrameWork {
+    int frame = 0;
+    FrameTruth truth;
+    std::vector<RenderedView> views;  // empty when the frame's files already exist
+  };
+  using Work = std::shared_ptr<FrameWork>;
+  // Image buffers of written frames are reused: fresh ones would cost page faults every frame.
+  std::vector<std::vector<RenderedView>> spare_views;
+  std::mutex spare_mutex;
+  Progress progress("render", frames, options.quiet);
+  int next = 0, rendered = 0;
+  double render_seconds = 0;
+  std::atomic<std::int64_t> write_ns{0};
+  // Frames go through three stages, pipelined so that image encoding overlaps rendering: pose,
+  // ground truth and render (in order: they share the Embree scene); write the images (any
+  // order, several at once); append the truth rows (in order).
+  auto render_frame = [&](tbb::flow_control& fc) -> Work {
+    if (next == frames) {
+      fc.stop();
+      return nullptr;
+    }
+    const auto t0 = Clock::now();
+    auto w = std::make_shared<FrameWork>();
+    w->frame = next++;
+    setup.pose(w->frame);
+    w->truth = compute_frame_truth(w->frame, setup.actors().posed(), cameras, setup.embree());
+    if (!(options.resume && writer.frame_complete(w->frame))) {
+      {
+        std::lock_guard lock(spare_mutex);
+        if (!spare_views.empty()) {
+          w->views = std::move(spare_views.back());
+          spare_views.pop_back();
+        }
+      }
+      setup.renderer().render(cameras, w->frame, w->views);
+      ++rendered;
+    }
+    render_seconds += seconds_since(t0);
+    return w;
+  };
+  auto write_images = [&](Work w) {
+    if (w->views.empty()) return w;
+    const auto t0 = Clock::now();
+    writer.write_frame(w->frame, w->views);
+    write_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - t0).count();
+    std::lock_guard lock(spare_mutex);
+    spare_views.push_back(std::move(w->views));
+    return w;
+  };
+  auto write_truth = [&](Work w) {
+    writer.append_truth(w->truth);
+    progress.advance();
+  };
+  tbb::parallel_pipeline(
+      kFramesInFlight,
+      tbb::make_filter<void, Work>(tbb::filter_mode::serial_in_order, render_frame) &
+          tbb::make_filter<Work, Work>(tbb::filter_mode::parallel, write_images) &
+          tbb::make_filter<Work, void>(tbb::filter_mode::serial_in_order, write_truth));
+  writer.commit_truth();
+  progress.finish();
+
+  RenderSummary summary;
+  summary.frames = frames;
+  summary.cameras = static_cast<int>(cameras.size());
+  summary.seconds = seconds_since(start);
+  summary.write_seconds = 1e-9 * static_cast<double>(write_ns.load());
+  summary.dataset = out_dir;
+  meta["complete"] = true;
+  meta["timings"] = {{"total_s", summary.seconds},
+                     {"render_s", render_seconds},
+                     {"write_thread_s", summary.write_seconds},
+                     {"threads", tbb::info::default_concurrency()},
+                     {"frames_rendered", rendered},
+                     {"frames_resumed", frames - rendered},
+                     {"frames_per_s", frames / summary.seconds}};
+  write_text_atomic(out_dir / "meta.json", meta.dump(2) + "\n");
+  return summary;
+}
+
+}  // namespace simcap

@@ -1,0 +1,44 @@
+// `simcap render` as a library call: loads a scene, renders every frame of every camera and
+// writes the complete dataset (images, ground truth, calibration, meta.json). `simcap loop` and
+// `simcap demo` call it too.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace simcap {
+
+struct RenderOptions {
+  int frames = -1;                        // > 0: render this many frames instead of the scene's
+  std::filesystem::path motion_override;  // a BVH file replacing the first actor's motion
+  std::optional<std::uint64_t> seed;      // replaces the scene's render seed
+  // Continue a render in `out_dir`: frames whose files all exist are not rendered again (their
+  // ground truth is recomputed, which is cheap). The scene must be the one rendered there.
+  bool resume = false;
+  // Replace a dataset already in `out_dir` (its simcap files and folders are removed first).
+  bool overwrite = false;
+  bool quiet = false;                  // no progress on stderr
+  std::vector<std::string> overrides;  // "key.path=value" scene overrides (load_scene)
+};
+
+struct RenderSummary {
+  int frames = 0;
+  int cameras = 0;
+  double seconds = 0;  // wall time of the whole job
+  // Thread-seconds spent encoding and writing image files (pipelined with rendering, so it
+  // overlaps `seconds`; the share of the CPU it took is write_seconds / (seconds * threads)).
+  double write_seconds = 0;
+  std::filesystem::path dataset;
+};
+
+// Renders `scene_file` into `out_dir`. The folder must not exist or be empty, unless `resume`
+// or `overwrite` says what to do with what is there. Everything that can be checked before
+// rendering (scene, motion files, textures, meshes, the output folder) is checked before the
+// first file is written. Throws Error.
+RenderSummary render_dataset(const std::filesystem::path& scene_file,
+                             const std::filesystem::path& out_dir, const RenderOptions& options);
+
+}  // namespace simcap

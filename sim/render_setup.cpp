@@ -1,0 +1,67 @@
+#include "sim/render_setup.h"
+
+#include <memory>
+
+#include "sim/scene_meshes.h"
+#include "sim/texture.h"
+
+namespace simcap {
+namespace {
+
+void add_room_and_occluders(EmbreeScene& embree, const Scene& scene) {
+  const Room& room = scene.room;
+  std::shared_ptr<const Texture> floor_texture, wall_texture;
+  if (!room.floor_texture.empty()) floor_texture = std::make_shared<Texture>(room.floor_texture);
+  if (!room.wall_texture.empty()) wall_texture = std::make_shared<Texture>(room.wall_texture);
+  for (const RoomSurface& s : room_surfaces(room)) {
+    StaticLook look;
+    look.color = s.floor ? room.floor_color : room.wall_color;
+    look.texture = s.floor ? floor_texture : wall_texture;
+    look.tex_u = s.tex_u;
+    look.tex_v = s.tex_v;
+    embree.add_static(s.mesh, look, false);
+  }
+  const auto base_dir = scene.source.parent_path();
+  for (const Occluder& o : scene.occluders) {
+    StaticLook look;
+    look.color = o.color;
+    embree.add_static(occluder_mesh(o, base_dir), look, true);
+  }
+}
+
+std::vector<CameraRays> make_rays(const std::vector<Camera>& cameras) {
+  std::vector<CameraRays> rays;
+  rays.reserve(cameras.size());
+  for (const Camera& c : cameras) rays.emplace_back(c);
+  return rays;
+}
+
+}  // namespace
+
+RenderSetup::RenderSetup(const Scene& scene, BodyBvhUpdate body_update)
+    : scene_(scene),
+      actors_(scene_),
+      embree_(body_update),
+      cameras_(make_rays(scene_.cameras)),
+      renderer_(embree_, scene_) {
+  add_room_and_occluders(embree_, scene_);
+  actors_.attach(embree_);
+  embree_.commit();
+}
+
+void RenderSetup::pose(int frame) {
+  actors_.pose(frame);
+  embree_.commit();
+}
+
+std::vector<RenderedView> RenderSetup::render_background() {
+  std::vector<RenderedView> views;
+  embree_.set_actors_visible(false);
+  embree_.commit();
+  renderer_.render(cameras_, -1, views, false);
+  embree_.set_actors_visible(true);
+  embree_.commit();
+  return views;
+}
+
+}  // namespace simcap

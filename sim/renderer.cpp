@@ -1,0 +1,376 @@
+#include "sim/renderer.h"
+
+#include <oneapi/tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "sim/embree_packets.h"
+#include "sim/random.h"
+
+namespace simcap {
+namespace {
+
+// Shadow rays start this far off the surface (metres) so they do not hit it again.
+constexpr float kShadowOffset = 2e-4f;
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+enum Stream : std::uint64_t { kJitter = 1, kRgbNoise = 2, kDepthNoise = 3 };
+
+}  // namespace
+
+Renderer::Renderer(const EmbreeScene& embree, const Scene& scene)
+    : embree_(embree),
+      ambient_(static_cast<float>(scene.ambient)),
+      samples_(std::max(1, scene.render.samples_per_pixel)),
+      seed_(scene.render.seed),
+      noise_(scene.noise),
+      normals_(scene.render.normals) {
+  for (const Light& l : scene.lights) {
+    LightSource s;
+    s.directional = l.kind == Light::Kind::directional;
+    s.towards_light = (-l.direction).normalized().cast<float>();
+    s.position = l.position.cast<float>();
+    s.intensity = static_cast<float>(l.intensity);
+    s.shadows = l.shadows;
+    lights_.push_back(s);
+  }
+}
+
+RayCounts Renderer::render(const std::vector<CameraRays>& cameras, int frame,
+                           std::vector<RenderedView>& views, bool sensor_noise) const {
+  views.resize(cameras.size());
+  std::vector<Tile> tiles;
+  for (size_t c = 0; c < cameras.size(); ++c) {
+    const int w = cameras[c].width(), h = cameras[c].height();
+    RenderedView& v = views[c];
+    v.rgb.create(h, w, CV_8UC3);
+    v.depth.create(h, w, CV_32FC1);
+    v.mask.create(h, w, CV_8UC1);
+    v.parts.create(h, w, CV_8UC1);
+    if (normals_) {
+      v.normal.create(h, w, CV_32FC3);
+    } else {
+      v.normal.release();
+    }
+    for (int y = 0; y < h; y += kTileHeight) {
+      for (int x = 0; x < w; x += kTileWidth) {
+        tiles.push_back(
+            {static_cast<int>(c), x, y, std::min(w, x + kTileWidth), std::min(h, y + kTileHeight)});
+      }
+    }
+  }
+  std::atomic<std::uint64_t> camera_rays{0}, shadow_rays{0};
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const auto& range) {
+    RayCounts local;
+    for (size_t i = range.begin(); i != range.end(); ++i) {
+      const Tile& t = tiles[i];
+      const RayCounts n = render_tile(cameras[t.camera], t, frame, views[t.camera], sensor_noise);
+      local.camera += n.camera;
+      local.shadow += n.shadow;
+    }
+    camera_rays += local.camera;
+    shadow_rays += local.shadow;
+  });
+  return {camera_rays.load(), shadow_rays.load()};
+}
+
+// Per-lane state as structure-of-arrays, so that the lighting loops vectorise.
+struct Renderer::Lanes {
+  static constexpr int N = CameraRays::kLanes;
+  RayHitPacket<N> packet;
+  alignas(64) int valid[N], hit[N];
+  alignas(64) float red[N], green[N], blue[N];  // radiance, summed over samples
+  alignas(64) float albedo[3][N], normal[3][N], geometric[3][N], position[3][N];
+  int part[N], actor[N];
+};
+
+void Renderer::trace_camera_rays(const CameraRays& rays, int px, int py, int sample,
+                                 std::uint64_t camera_key, std::uint64_t frame_key,
+                                 Lanes& l) const {
+  constexpr int N = Lanes::N, B = CameraRays::kBlock;
+  auto& ray = l.packet.ray;
+  if (sample == 0) {
+    const float* block = rays.block(px / B, py / B);
+    std::copy_n(block, N, ray.dir_x);
+    std::copy_n(block + N, N, ray.dir_y);
+    std::copy_n(block + 2 * N, N, ray.dir_z);
+  } else {
+    for (int k = 0; k < N; ++k) {
+      const int x = px + k % B, y = py + k / B;
+      const std::uint64_t pixel = static_cast<std::uint64_t>(y) * rays.width() + x;
+      const std::uint64_t bits = random_bits(
+          seed_, {kJitter, camera_key, frame_key, pixel, static_cast<std::uint64_t>(sample)});
+      const Eigen::Vector3f d = l.valid[k] ? rays.jittered_direction(x, y, uniform01(bits) - 0.5f,
+                                                                     uniform01(mix64(bits)) - 0.5f)
+                                           : Eigen::Vector3f(Eigen::Vector3f::UnitZ());
+      ray.dir_x[k] = d.x();
+      ray.dir_y[k] = d.y();
+      ray.dir_z[k] = d.z();
+    }
+  }
+  const Eigen::Vector3f o = rays.origin();
+  for (int k = 0; k < N; ++k) {
+    ray.org_x[k] = o.x();
+    ray.org_y[k] = o.y();
+    ray.org_z[k] = o.z();
+    ray.tnear[k] = 0.f;
+    ray.tfar[k] = kInf;
+    ray.time[k] = 0.f;
+    ray.mask[k] = ~0u;
+    ray.id[k] = static_cast<unsigned>(k);
+    ray.flags[k] = 0;
+    l.packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    l.packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  intersect_packet<N>(l.valid, embree_.handle(), &context, l.packet);
+  for (int k = 0; k < N; ++k) {
+    l.hit[k] = l.valid[k] && l.packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID ? -1 : 0;
+    const float t = l.hit[k] ? ray.tfar[k] : 0.f;
+    l.position[0][k] = o.x() + t * ray.dir_x[k];
+    l.position[1][k] = o.y() + t * ray.dir_y[k];
+    l.position[2][k] = o.z() + t * ray.dir_z[k];
+  }
+}
+
+// A gather, lane by lane. Neighbouring rays mostly hit the same flat, untextured triangle of a
+// wall, whose surface point is then the same for all of them: it is looked up once.
+void Renderer::look_up_surfaces(Lanes& l) const {
+  constexpr int N = Lanes::N;
+  const auto& hit = l.packet.hit;
+  auto look_up = [&](int k) {
+    HitRecord h;
+    h.geom_id = hit.geomID[k];
+    h.inst_id = hit.instID[0][k];
+    h.prim_id = hit.primID[k];
+    h.u = hit.u[k];
+    h.v = hit.v[k];
+    h.ng = {hit.Ng_x[k], hit.Ng_y[k], hit.Ng_z[k]};
+    const SurfacePoint sp =
+        embree_.surface(h, {l.position[0][k], l.position[1][k], l.position[2][k]},
+                        {l.packet.ray.dir_x[k], l.packet.ray.dir_y[k], l.packet.ray.dir_z[k]});
+    l.actor[k] = sp.actor;
+    l.part[k] = sp.part;
+    for (int c = 0; c < 3; ++c) {
+      l.albedo[c][k] = sp.albedo[c];
+      l.normal[c][k] = sp.normal[c];
+      l.geometric[c][k] = sp.geometric_normal[c];
+    }
+    return embree_.uniform_surface(h);
+  };
+  auto copy_lane = [&](int from, int to) {
+    l.actor[to] = l.actor[from];
+    l.part[to] = l.part[from];
+    for (int c = 0; c < 3; ++c) {
+      l.albedo[c][to] = l.albedo[c][from];
+      l.normal[c][to] = l.normal[c][from];
+      l.geometric[c][to] = l.geometric[c][from];
+    }
+  };
+  auto same_triangle = [&](int a, int b) {
+    return hit.geomID[a] == hit.geomID[b] && hit.primID[a] == hit.primID[b] &&
+           hit.instID[0][a] == hit.instID[0][b];
+  };
+  int all_same = -1;
+  for (int k = 0; k < N; ++k) all_same &= l.hit[k] & -static_cast<int>(same_triangle(k, 0));
+  if (all_same && look_up(0)) {
+    for (int k = 1; k < N; ++k) copy_lane(0, k);
+    return;
+  }
+  int uniform_lane = -1;
+  for (int k = 0; k < N; ++k) {
+    if (!l.hit[k]) {
+      l.actor[k] = -1;
+      l.part[k] = 0;
+      for (int c = 0; c < 3; ++c) l.albedo[c][k] = l.normal[c][k] = l.geometric[c][k] = 0.f;
+    } else if (uniform_lane >= 0 && same_triangle(k, uniform_lane)) {
+      copy_lane(uniform_lane, k);
+    } else {
+      uniform_lane = look_up(k) ? k : -1;
+    }
+  }
+}
+
+int Renderer::add_light(const LightSource& light, Lanes& l) const {
+  constexpr int N = Lanes::N;
+  // The shadow packet's direction and length arrays double as the light vectors.
+  RayPacket<N> shadow;
+  alignas(64) int lit[N];
+  alignas(64) float weight[N];
+  float* const dir[3] = {shadow.dir_x, shadow.dir_y, shadow.dir_z};
+  if (light.directional) {
+    const Eigen::Vector3f v = light.towards_light;
+    for (int k = 0; k < N; ++k) {
+      shadow.dir_x[k] = v.x();
+      shadow.dir_y[k] = v.y();
+      shadow.dir_z[k] = v.z();
+      shadow.tfar[k] = kInf;
+    }
+  } else {
+    for (int k = 0; k < N; ++k) {
+      for (int c = 0; c < 3; ++c) dir[c][k] = light.position[c] - l.position[c][k];
+      shadow.tfar[k] =
+          std::sqrt(dir[0][k] * dir[0][k] + dir[1][k] * dir[1][k] + dir[2][k] * dir[2][k]);
+      for (int c = 0; c < 3; ++c) dir[c][k] /= shadow.tfar[k];
+    }
+  }
+  const float intensity = light.intensity;
+  for (int k = 0; k < N; ++k) {
+    const float cosine =
+        l.normal[0][k] * dir[0][k] + l.normal[1][k] * dir[1][k] + l.normal[2][k] * dir[2][k];
+    const float facing = l.geometric[0][k] * dir[0][k] + l.geometric[1][k] * dir[1][k] +
+                         l.geometric[2][k] * dir[2][k];
+    const bool lights_it = (l.hit[k] != 0) & (cosine > 0.f) & (facing > 0.f);
+    lit[k] = lights_it ? -1 : 0;
+    weight[k] = lights_it ? intensity * cosine : 0.f;
+  }
+  int shadow_rays = 0;
+  if (light.shadows) {
+    for (int k = 0; k < N; ++k) shadow_rays -= lit[k];
+  }
+  if (shadow_rays > 0) {
+    for (int k = 0; k < N; ++k) {
+      shadow.org_x[k] = l.position[0][k] + kShadowOffset * l.geometric[0][k];
+      shadow.org_y[k] = l.position[1][k] + kShadowOffset * l.geometric[1][k];
+      shadow.org_z[k] = l.position[2][k] + kShadowOffset * l.geometric[2][k];
+      shadow.tnear[k] = 0.f;
+      shadow.time[k] = 0.f;
+      shadow.mask[k] = kShadowCasterMask;
+      shadow.id[k] = static_cast<unsigned>(k);
+      shadow.flags[k] = 0;
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    occluded_packet<N>(lit, embree_.handle(), &context, shadow);
+    for (int k = 0; k < N; ++k) {
+      if (shadow.tfar[k] < 0.f) weight[k] = 0.f;
+    }
+  }
+  for (int k = 0; k < N; ++k) {
+    l.red[k] += weight[k] * l.albedo[0][k];
+    l.green[k] += weight[k] * l.albedo[1][k];
+    l.blue[k] += weight[k] * l.albedo[2][k];
+  }
+  return shadow_rays;
+}
+
+void Renderer::add_sensor_noise(int px, int py, int width, std::uint64_t camera_key,
+                                std::uint64_t frame_key, const Lanes& l, cv::Vec3b* const* rgb_rows,
+                                float* const* depth_rows) const {
+  constexpr int B = CameraRays::kBlock;
+  for (int k = 0; k < Lanes::N; ++k) {
+    if (!l.valid[k]) continue;
+    const int x = px + k % B, y = py + k / B;
+    const std::uint64_t pixel = static_cast<std::uint64_t>(y) * width + x;
+    cv::Vec3b& rgb = rgb_rows[k / B][x];
+    if (noise_.rgb_sigma > 0) {
+      for (int c = 0; c < 3; ++c) {
+        const float n = standard_normal(random_bits(
+            seed_, {kRgbNoise, camera_key, frame_key, 3 * pixel + static_cast<std::uint64_t>(c)}));
+        const float level = std::round(rgb[c] + static_cast<float>(noise_.rgb_sigma) * n);
+        rgb[c] = static_cast<std::uint8_t>(std::clamp(level, 0.f, 255.f));
+      }
+    }
+    float& depth = depth_rows[k / B][x];
+    if (noise_.depth_sigma_m > 0 && std::isfinite(depth)) {
+      depth += static_cast<float>(noise_.depth_sigma_m) *
+               standard_normal(random_bits(seed_, {kDepthNoise, camera_key, frame_key, pixel}));
+    }
+  }
+}
+
+RayCounts Renderer::render_tile(const CameraRays& rays, const Tile& tile, int frame,
+                                RenderedView& view, bool sensor_noise) const {
+  constexpr int N = Lanes::N, B = CameraRays::kBlock;
+  static_assert(3 * N == SrgbEncoder::kBatch);
+  const bool single_actor = embree_.actor_count() == 1;
+  const auto camera_key = static_cast<std::uint64_t>(tile.camera);
+  const auto frame_key = static_cast<std::uint64_t>(static_cast<std::int64_t>(frame));
+  RayCounts counts;
+  Lanes l;
+  for (int py = tile.y0; py < tile.y1; py += B) {
+    // Image rows of the blocks; rows below the image are never written (their lanes are invalid).
+    float* depth_rows[B];
+    std::uint8_t *mask_rows[B], *parts_rows[B];
+    cv::Vec3b* rgb_rows[B];
+    for (int r = 0; r < B; ++r) {
+      const int y = std::min(py + r, tile.y1 - 1);
+      depth_rows[r] = view.depth.ptr<float>(y);
+      mask_rows[r] = view.mask.ptr<std::uint8_t>(y);
+      parts_rows[r] = view.parts.ptr<std::uint8_t>(y);
+      rgb_rows[r] = view.rgb.ptr<cv::Vec3b>(y);
+    }
+    for (int px = tile.x0; px < tile.x1; px += B) {
+      for (int k = 0; k < N; ++k) {
+        l.valid[k] = px + k % B < tile.x1 && py + k / B < tile.y1 ? -1 : 0;
+        l.red[k] = l.green[k] = l.blue[k] = 0.f;
+        counts.camera += l.valid[k] ? samples_ : 0;
+      }
+      for (int s = 0; s < samples_; ++s) {
+        trace_camera_rays(rays, px, py, s, camera_key, frame_key, l);
+        look_up_surfaces(l);
+        for (int k = 0; k < N; ++k) {
+          l.red[k] += ambient_ * l.albedo[0][k];
+          l.green[k] += ambient_ * l.albedo[1][k];
+          l.blue[k] += ambient_ * l.albedo[2][k];
+        }
+        if (s == 0) {
+          const float* z_scale = rays.block(px / B, py / B) + 3 * N;
+          for (int k = 0; k < N; ++k) {
+            const float depth = l.hit[k] ? l.packet.ray.tfar[k] * z_scale[k] : kInf;
+            const int x = px + k % B, row = k / B;
+            if (!l.valid[k]) continue;
+            depth_rows[row][x] = depth;
+            mask_rows[row][x] = static_cast<std::uint8_t>(
+                l.actor[k] < 0 ? 0 : (single_actor ? 255 : l.actor[k] + 1));
+            parts_rows[row][x] = static_cast<std::uint8_t>(l.part[k]);
+            if (normals_) {
+              view.normal.at<cv::Vec3f>(py + row, x) =
+                  cv::Vec3f(l.normal[0][k], l.normal[1][k], l.normal[2][k]);
+            }
+          }
+        }
+        for (const LightSource& light : lights_) {
+          counts.shadow += static_cast<std::uint64_t>(add_light(light, l));
+        }
+      }
+
+      alignas(64) float linear[3 * N];
+      alignas(64) std::uint8_t codes[3 * N];
+      const float scale = 1.f / static_cast<float>(samples_);
+      for (int k = 0; k < N; ++k) {
+        linear[k] = scale * l.red[k];
+        linear[N + k] = scale * l.green[k];
+        linear[2 * N + k] = scale * l.blue[k];
+      }
+      // Blocks of a uniformly lit wall share one colour: encode it once.
+      int one_colour = 1;
+      for (int k = 0; k < N; ++k) {
+        one_colour &= (linear[k] == linear[0]) & (linear[N + k] == linear[N]) &
+                      (linear[2 * N + k] == linear[2 * N]);
+      }
+      if (one_colour) {
+        for (int c = 0; c < 3; ++c) std::memset(codes + c * N, encode_(linear[c * N]), N);
+      } else {
+        encode_.encode(linear, codes);
+      }
+      for (int k = 0; k < N; ++k) {
+        if (l.valid[k]) {
+          rgb_rows[k / B][px + k % B] = cv::Vec3b(codes[k], codes[N + k], codes[2 * N + k]);
+        }
+      }
+      if (sensor_noise) {
+        add_sensor_noise(px, py, rays.width(), camera_key, frame_key, l, rgb_rows, depth_rows);
+      }
+    }
+  }
+  return counts;
+}
+
+}  // namespace simcap

@@ -1,0 +1,228 @@
+// The renderer against geometry whose images are known in closed form: a plane's depth, a
+// sphere's silhouette area predicted through cv::projectPoints, the sRGB curve, textures.
+#include <gtest/gtest.h>
+
+#include <Eigen/Core>
+#include <cmath>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core/eigen.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "core/image_io.h"
+#include "sim/camera_rays.h"
+#include "sim/embree_scene.h"
+#include "sim/renderer.h"
+#include "sim/srgb.h"
+#include "sim/texture.h"
+#include "tests/support/temp_dir.h"
+
+namespace simcap {
+namespace {
+
+// A camera with visible lens distortion, so that per-pixel rays are exercised.
+Camera distorted_camera(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {
+  Camera c = Camera::look_at("cam", 320, 240, 70 * M_PI / 180, eye, target);
+  c.dist << -0.25, 0.08, 0.001, -0.0015, -0.01;
+  return c;
+}
+
+TriangleMesh quad(const Eigen::Vector3f& centre, const Eigen::Vector3f& u,
+                  const Eigen::Vector3f& v) {
+  TriangleMesh m;
+  m.vertices = {centre - u - v, centre + u - v, centre + u + v, centre - u + v};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return m;
+}
+
+// Latitude-longitude sphere, fine enough that its silhouette is within 1e-4 of the sphere's.
+TriangleMesh sphere(const Eigen::Vector3f& centre, float radius) {
+  constexpr int kLon = 512, kLat = 256;
+  TriangleMesh m;
+  for (int i = 0; i <= kLat; ++i) {
+    const double theta = M_PI * i / kLat;
+    for (int j = 0; j < kLon; ++j) {
+      const double phi = 2 * M_PI * j / kLon;
+      m.vertices.push_back(
+          centre + radius * Eigen::Vector3f(static_cast<float>(std::sin(theta) * std::cos(phi)),
+                                            static_cast<float>(std::cos(theta)),
+                                            static_cast<float>(std::sin(theta) * std::sin(phi))));
+    }
+  }
+  for (std::uint32_t i = 0; i < kLat; ++i) {
+    for (std::uint32_t j = 0; j < kLon; ++j) {
+      const std::uint32_t a = i * kLon + j, b = i * kLon + (j + 1) % kLon;
+      m.triangles.push_back({a, a + kLon, b + kLon});
+      m.triangles.push_back({a, b + kLon, b});
+    }
+  }
+  return m;
+}
+
+RenderedView render_one(const EmbreeScene& embree, const Scene& scene, const Camera& camera) {
+  Renderer renderer(embree, scene);
+  std::vector<CameraRays> rays;
+  rays.emplace_back(camera);
+  std::vector<RenderedView> views;
+  renderer.render(rays, 0, views);
+  return views.at(0);
+}
+
+TEST(Renderer, PlaneFacingTheCameraHasItsDistanceAsDepthInEveryPixel) {
+  const Eigen::Vector3d eye(0.3, 1.2, -0.4), target(1.0, 1.5, 2.0);
+  const Camera cam = distorted_camera(eye, target);
+  const double z = 2.5;
+  const Eigen::Vector3f centre = (eye + z * cam.R.row(2).transpose()).cast<float>();
+  EmbreeScene embree;
+  embree.add_static(quad(centre, 50.f * cam.R.row(0).transpose().cast<float>(),
+                         50.f * cam.R.row(1).transpose().cast<float>()),
+                    {}, true);
+  embree.commit();
+  const RenderedView view = render_one(embree, Scene{}, cam);
+  ASSERT_EQ(view.depth.type(), CV_32FC1);
+  double worst = 0;
+  for (int y = 0; y < view.depth.rows; ++y) {
+    for (int x = 0; x < view.depth.cols; ++x) {
+      worst = std::max(worst, std::abs(view.depth.at<float>(y, x) - z));
+    }
+  }
+  EXPECT_LT(worst, 1e-5 * z);
+  EXPECT_EQ(cv::countNonZero(view.mask), 0);  // no actor
+  EXPECT_EQ(cv::countNonZero(view.parts), 0);
+}
+
+TEST(Renderer, NothingHitGivesInfiniteDepth) {
+  EmbreeScene embree;
+  embree.commit();
+  const RenderedView view = render_one(embree, Scene{}, distorted_camera({0, 1, 0}, {0, 1, 1}));
+  for (int y = 0; y < view.depth.rows; ++y) {
+    for (int x = 0; x < view.depth.cols; ++x) {
+      ASSERT_TRUE(std::isinf(view.depth.at<float>(y, x)) && view.depth.at<float>(y, x) > 0);
+    }
+  }
+}
+
+TEST(Renderer, SphereCoversThePixelAreaTheCameraModelPredicts) {
+  const Camera cam = distorted_camera({0.2, 1.4, -2.0}, {0.0, 1.0, 1.0});
+  // Off-axis, so that distortion changes the silhouette's shape and size.
+  const Eigen::Vector3d centre_cam(0.55, -0.3, 3.2);
+  const double r = 0.45;
+  EmbreeScene embree;
+  embree.add_static(sphere(cam.to_world(centre_cam).cast<float>(), static_cast<float>(r)), {},
+                    true);
+  embree.commit();
+  const RenderedView view = render_one(embree, Scene{}, cam);
+  int covered = 0;
+  for (int y = 0; y < view.depth.rows; ++y) {
+    for (int x = 0; x < view.depth.cols; ++x) covered += std::isfinite(view.depth.at<float>(y, x));
+  }
+  // The silhouette is the circle where the tangent cone from the camera centre touches the
+  // sphere; OpenCV projects it through the same lens model.
+  const double d = centre_cam.norm();
+  const Eigen::Vector3d axis = centre_cam / d;
+  const Eigen::Vector3d u = axis.cross(Eigen::Vector3d::UnitY()).normalized();
+  const Eigen::Vector3d v = axis.cross(u);
+  const Eigen::Vector3d circle_centre = centre_cam * (1 - r * r / (d * d));
+  const double circle_radius = r * std::sqrt(1 - r * r / (d * d));
+  std::vector<cv::Point3d> rim;
+  for (int i = 0; i < 4000; ++i) {
+    const double a = 2 * M_PI * i / 4000;
+    const Eigen::Vector3d p = circle_centre + circle_radius * (std::cos(a) * u + std::sin(a) * v);
+    rim.emplace_back(p.x(), p.y(), p.z());
+  }
+  cv::Mat K, dist;
+  cv::eigen2cv(cam.K, K);
+  cv::eigen2cv(Eigen::MatrixXd(cam.dist.transpose()), dist);
+  std::vector<cv::Point2d> projected;
+  cv::projectPoints(rim, cv::Vec3d(0, 0, 0), cv::Vec3d(0, 0, 0), K, dist, projected);
+  const std::vector<cv::Point2f> outline(projected.begin(), projected.end());
+  const double predicted = cv::contourArea(outline);
+  ASSERT_GT(predicted, 3000);  // big enough for pixel counting to resolve 1%
+  EXPECT_NEAR(covered, predicted, 0.01 * predicted);
+}
+
+TEST(Renderer, LambertShadingWithAndWithoutShadow) {
+  // A floor lit straight from above, half of it under a floating box.
+  Scene scene;
+  scene.ambient = 0.2;
+  Light light;
+  light.direction = {0, -1, 0};
+  light.intensity = 0.7;
+  scene.lights = {light};
+  EmbreeScene embree;
+  StaticLook white;
+  white.color = {1.f, 1.f, 1.f};
+  embree.add_static(quad({0, 0, 0}, {5, 0, 0}, {0, 0, 5}), white, false);
+  embree.add_static(quad({-2.5f, 1, 0}, {2.5f, 0, 0}, {0, 0, 5}), white, true);
+  embree.commit();
+  const Camera cam = Camera::look_at("cam", 64, 48, 1.0, {0.01, 0.5, 0}, {0.01, -1, 0.0},
+                                     Eigen::Vector3d::UnitZ());
+  const RenderedView view = render_one(embree, scene, cam);
+  const SrgbEncoder encode;
+  // +X is on the image's left here (looking down with +Z up in the image).
+  EXPECT_EQ(view.rgb.at<cv::Vec3b>(24, 10)[0], encode(0.2f + 0.7f));  // lit floor at x > 0
+  EXPECT_EQ(view.rgb.at<cv::Vec3b>(24, 54)[0], encode(0.2f));         // box shadow at x < 0
+}
+
+TEST(CameraRays, PixelRaysAreTheCameraModelsAndJitteredRaysInterpolateIt) {
+  const Camera cam = distorted_camera({0.2, 1.4, -2.0}, {0.0, 1.0, 1.0});
+  const CameraRays rays(cam);
+  double worst_centre = 0, worst_jitter = 0;
+  for (int y = 0; y < cam.height; y += 7) {
+    for (int x = 0; x < cam.width; x += 5) {
+      const Eigen::Vector3d exact = cam.unproject({double(x), double(y)});
+      worst_centre = std::max(worst_centre, (rays.direction(x, y).cast<double>() - exact).norm());
+      EXPECT_NEAR(rays.z_scale(x, y), (cam.R * exact).z(), 1e-6);
+      const float jx = 0.5f * static_cast<float>((x * 37 + y * 11) % 21 - 10) / 10;
+      const float jy = 0.5f * static_cast<float>((x * 13 + y * 29) % 21 - 10) / 10;
+      const Eigen::Vector3d jittered = cam.unproject({x + jx, y + jy});
+      worst_jitter = std::max(
+          worst_jitter, (rays.jittered_direction(x, y, jx, jy).cast<double>() - jittered).norm());
+    }
+  }
+  // The last row and column use the outermost pixel corners.
+  const Eigen::Vector3d corner = cam.unproject({cam.width - 0.5, cam.height - 0.5});
+  worst_jitter = std::max(
+      worst_jitter,
+      (rays.jittered_direction(cam.width - 1, cam.height - 1, 0.5f, 0.5f).cast<double>() - corner)
+          .norm());
+  EXPECT_LT(worst_centre, 1e-6);  // float precision
+  EXPECT_LT(worst_jitter, 1e-5);  // ~0.005 px at this focal length
+}
+
+TEST(Srgb, EncoderInvertsTheTransferCurveForEveryCode) {
+  const SrgbEncoder encode;
+  for (int code = 0; code < 256; ++code) {
+    EXPECT_EQ(encode(srgb_to_linear(code / 255.f)), code) << code;
+  }
+  for (int first = 0; first < 256; first += SrgbEncoder::kBatch) {
+    float linear[SrgbEncoder::kBatch];
+    std::uint8_t codes[SrgbEncoder::kBatch];
+    for (int i = 0; i < SrgbEncoder::kBatch; ++i) {
+      linear[i] = srgb_to_linear(std::min(255, first + i) / 255.f);
+    }
+    encode.encode(linear, codes);
+    for (int i = 0; i < SrgbEncoder::kBatch; ++i) EXPECT_EQ(codes[i], std::min(255, first + i));
+  }
+  EXPECT_EQ(encode(-1.f), 0);
+  EXPECT_EQ(encode(7.f), 255);
+}
+
+TEST(Texture, SamplesTexelCentresAndRepeatsEveryMetre) {
+  testing::TempDir dir;
+  cv::Mat image(2, 2, CV_8UC3);
+  image.at<cv::Vec3b>(0, 0) = {255, 0, 0};
+  image.at<cv::Vec3b>(0, 1) = {0, 255, 0};
+  image.at<cv::Vec3b>(1, 0) = {0, 0, 255};
+  image.at<cv::Vec3b>(1, 1) = {255, 255, 255};
+  write_image(dir / "t.png", image);
+  const Texture texture(dir / "t.png");
+  EXPECT_TRUE(texture.sample(0.25f, 0.25f).isApprox(Eigen::Vector3f(1, 0, 0)));
+  EXPECT_TRUE(texture.sample(0.75f, 0.25f).isApprox(Eigen::Vector3f(0, 1, 0)));
+  EXPECT_TRUE(texture.sample(0.25f, 0.75f).isApprox(Eigen::Vector3f(0, 0, 1)));
+  EXPECT_TRUE(texture.sample(3.75f, -0.25f).isApprox(Eigen::Vector3f(1, 1, 1)));
+  // Halfway between two texels: the mean of their linear values.
+  EXPECT_TRUE(texture.sample(0.5f, 0.25f).isApprox(Eigen::Vector3f(0.5f, 0.5f, 0)));
+}
+
+}  // namespace
+}  // namespace simcap
