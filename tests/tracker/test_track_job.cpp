@@ -1,0 +1,148 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <opencv2/core.hpp>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "core/image_io.h"
+#include "core/joint_track.h"
+#include "models/humanoid.h"
+#include "tests/support/temp_dir.h"
+#include "tests/tracker/capsule_dataset.h"
+
+namespace simcap {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::run_simcap;
+using testing::TempDir;
+
+// One capsule dataset shared by the tests of this file (rendering it takes a second).
+const fs::path& dataset() {
+  static TempDir dir;
+  static const fs::path root = [] {
+    const fs::path r = dir / "capsules";
+    testing::write_capsule_dataset(r);
+    return r;
+  }();
+  return root;
+}
+
+double mpjpe_mm(const fs::path& gt_file, const fs::path& track_file) {
+  const JointTrack gt = read_joint_track(gt_file);
+  const JointTrack track = read_joint_track(track_file);
+  double sum = 0;
+  int n = 0;
+  for (size_t f = 0; f < track.frames.size(); ++f) {
+    const size_t g =
+        std::find(gt.frames.begin(), gt.frames.end(), track.frames[f]) - gt.frames.begin();
+    for (size_t j = 0; j < track.joints.size(); ++j) {
+      sum += (track.positions[f][j] - gt.positions[g][gt.joint_index(track.joints[j])]).norm();
+      ++n;
+    }
+  }
+  return 1000 * sum / n;
+}
+
+TEST(TrackJob, TracksTheCapsuleBodyWithGroundTruthSilhouettes) {
+  TempDir out;
+  std::string log;
+  ASSERT_EQ(
+      run_simcap("track " + dataset().string() + " -o " + (out / "t").string() + " --quiet", &log),
+      0)
+      << log;
+  const JointTrack track = read_joint_track(out / "t" / "joints3d.csv");
+  EXPECT_EQ(track.joints, he15_joints());
+  EXPECT_EQ(track.frames.size(), 6u);
+  EXPECT_LT(mpjpe_mm(dataset() / "gt" / "joints3d.csv", out / "t" / "joints3d.csv"), 40.0);
+  for (const char* f :
+       {"centerline.csv", "timings.csv", "reinitializations.csv", "body_dimensions.csv"}) {
+    EXPECT_TRUE(fs::exists(out / "t" / "diagnostics" / f)) << f;
+  }
+  // Same input, same output.
+  ASSERT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / "u").string() + " --quiet"),
+            0);
+  EXPECT_EQ(read_text(out / "t" / "joints3d.csv"), read_text(out / "u" / "joints3d.csv"));
+  EXPECT_EQ(read_text(out / "t" / "diagnostics" / "centerline.csv"),
+            read_text(out / "u" / "diagnostics" / "centerline.csv"));
+}
+
+TEST(TrackJob, SubtractedSilhouettesAreScoredAgainstTheMasks) {
+  TempDir out;
+  std::string log;
+  ASSERT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / "t").string() +
+                           " --silhouettes bgsub --quiet",
+                       &log),
+            0)
+      << log;
+  std::istringstream iou(read_text(out / "t" / "diagnostics" / "silhouette_iou.csv"));
+  std::string line;
+  std::getline(iou, line);
+  int rows = 0;
+  while (std::getline(iou, line)) {
+    ++rows;
+    // Limbs are a few pixels wide at 240 x 180; the clean-up morphology costs some IoU there.
+    EXPECT_GT(std::stod(line.substr(line.rfind(',') + 1)), 0.85) << line;
+  }
+  EXPECT_EQ(rows, 6 * 5);
+  EXPECT_LT(mpjpe_mm(dataset() / "gt" / "joints3d.csv", out / "t" / "joints3d.csv"), 60.0);
+}
+
+TEST(TrackJob, AutoInitializationFindsTheBody) {
+  TempDir out;
+  std::string log;
+  ASSERT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / "t").string() +
+                           " --init auto --quiet",
+                       &log),
+            0)
+      << log;
+  EXPECT_LT(mpjpe_mm(dataset() / "gt" / "joints3d.csv", out / "t" / "joints3d.csv"), 80.0);
+}
+
+TEST(TrackJob, BadDatasetsGiveClearErrors) {
+  TempDir dir;
+  std::string log;
+  const std::string out = " -o " + (dir / "out").string();
+  // Not a dataset.
+  fs::create_directories(dir / "empty");
+  EXPECT_EQ(run_simcap("track " + (dir / "empty").string() + out, &log), 1);
+  EXPECT_NE(log.find("calibration/opencv.yaml: missing"), std::string::npos) << log;
+
+  auto copy = [&](const std::string& name) {
+    const fs::path d = dir / name;
+    fs::copy(dataset(), d, fs::copy_options::recursive);
+    return d;
+  };
+  // A camera folder missing.
+  const fs::path no_cam = copy("no_cam");
+  fs::remove_all(no_cam / "cam03");
+  EXPECT_EQ(run_simcap("track " + no_cam.string() + out, &log), 1);
+  EXPECT_NE(log.find("cam03: missing"), std::string::npos) << log;
+  // A frame missing in one camera.
+  const fs::path gap = copy("gap");
+  fs::remove(gap / "cam02" / "mask" / "000003.png");
+  EXPECT_EQ(run_simcap("track " + gap.string() + out, &log), 1);
+  EXPECT_NE(log.find("000003.png is missing"), std::string::npos) << log;
+  // An image of the wrong size.
+  const fs::path small = copy("small");
+  fs::copy_file(dataset() / "cam00" / "mask" / "000000.png", small / "x.png");
+  {
+    cv::Mat tiny(10, 10, CV_8UC1, cv::Scalar(0));
+    write_image(small / "cam01" / "mask" / "000002.png", tiny);
+  }
+  EXPECT_EQ(run_simcap("track " + small.string() + out, &log), 1);
+  EXPECT_NE(log.find("image is 10x10"), std::string::npos) << log;
+  // --init gt without ground truth.
+  const fs::path no_gt = copy("no_gt");
+  fs::remove_all(no_gt / "gt");
+  EXPECT_EQ(run_simcap("track " + no_gt.string() + out, &log), 1);
+  EXPECT_NE(log.find("joints3d.csv: missing (needed by --init gt)"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir / "out" / "joints3d.csv"));
+  // Unknown option values are refused by the command line.
+  EXPECT_NE(run_simcap("track " + dataset().string() + out + " --silhouettes magic", &log), 0);
+}
+
+}  // namespace
+}  // namespace simcap

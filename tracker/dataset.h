@@ -1,0 +1,53 @@
+// A simcap dataset as the trackers read it (ARCHITECTURE.md "Dataset layout"): calibration,
+// background plates, per-camera frames and ground truth, checked for missing or mismatched parts.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <filesystem>
+#include <opencv2/core/mat.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/camera.h"
+#include "core/joint_track.h"
+
+namespace simcap::tracker {
+
+class Dataset {
+ public:
+  // Reads calibration/opencv.yaml and checks that a folder exists for every camera. Throws
+  // Error naming what is missing.
+  explicit Dataset(std::filesystem::path root);
+
+  const std::filesystem::path& root() const { return root_; }
+  const std::vector<Camera>& cameras() const { return cameras_; }
+  int camera_count() const { return static_cast<int>(cameras_.size()); }
+
+  // Frame numbers with an image of `kind` ("mask", "rgb") for every camera, ascending. Throws
+  // Error when a camera lacks the folder, has no frames, or its frames differ from cam 0's.
+  std::vector<int> frames(const std::string& kind) const;
+
+  std::filesystem::path image_path(int camera, const std::string& kind, int frame) const;
+  // Actor silhouette, CV_8UC1 (nonzero = actor). Checked against the calibrated image size.
+  cv::Mat mask(int camera, int frame) const;
+  // Colour frame, CV_8UC3 in the decoder's channel order (the same for rgb() and background()).
+  cv::Mat rgb(int camera, int frame) const;
+  cv::Mat background(int camera) const;
+
+  std::filesystem::path ground_truth_path() const { return root_ / "gt" / "joints3d.csv"; }
+  // gt/joints3d.csv; throws Error naming the file when it is missing, saying what needs it.
+  JointTrack ground_truth(const std::string& needed_by) const;
+
+  // The room's interior from scene.yaml (room.size, centred on x = z = 0, floor at y = 0), when
+  // the file says.
+  std::optional<Eigen::AlignedBox3d> room() const;
+
+ private:
+  cv::Mat read(const std::filesystem::path& path, int camera, int flags) const;
+  std::filesystem::path root_;
+  std::vector<Camera> cameras_;
+};
+
+}  // namespace simcap::tracker

@@ -1,0 +1,45 @@
+// What the articulated fit registers the stick model to on one frame: Moschini's centerline
+// points, plus the hull cues simcap adds (surface voxels, containment).
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "tracker/stick_model.h"
+#include "tracker/visual_hull.h"
+
+namespace simcap::tracker {
+
+struct IcpTargets {
+  std::vector<Eigen::Vector3d> points;  // centerline points (Moschini §3.2)
+  // When set, the sticks are kept inside the hull: a limb whose slices merge with the torso or
+  // with the other limb yields no centerline points, and data-to-model matching alone lets it
+  // wander off through empty space to explain a few stray points.
+  const Occupancy* hull = nullptr;
+  // Hull surface voxels (a subsample), fitted by the sticks as capsules of
+  // BodyDimensions::radius: where a limb's centroids vanish, its bulge in the surface remains.
+  std::vector<Eigen::Vector3d> surface;
+};
+
+// Closest point on any stick's centerline: the clamped projection onto each (Fig. 4.3-4.4).
+struct ClosestStick {
+  int segment = -1;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // the closest point, on the stick
+  // The model point paired with the data point. Inside the stick it is `point`; past a joint end
+  // it is the foot of the perpendicular on the stick's line, because data beyond a joint belong
+  // to the next segment (or to a part the model lacks, like the feet or the crotch between
+  // merged legs) and must not drag this stick along its own axis. Only past a free tip (head
+  // top, finger tips) is it the tip itself, which fixes how far a chain reaches.
+  Eigen::Vector3d match = Eigen::Vector3d::Zero();
+  bool on_line = false;  // `match` is a perpendicular foot: only the distance across counts
+  double along = 0;      // position of `point` on the stick: 0 proximal, 1 distal
+  double distance = 0;
+};
+ClosestStick closest_stick(const StickGeometry& g, const Eigen::Vector3d& x);
+
+// The X84 threshold on distances: med + k · 1.4826 · med|e - med|, but never below `floor`:
+// near convergence on clean data the MAD shrinks towards 0 and X84 would reject the very points
+// that still pull a limb into place.
+double x84_threshold(std::vector<double> distances, double k, double floor);
+
+}  // namespace simcap::tracker

@@ -1,0 +1,85 @@
+// Moschini's tracking loop (Alg. 3) on observed frames: articulated ICP from the previous pose,
+// then the EKF; detects lost tracking and re-initializes instead of drifting.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tracker/articulated_icp.h"
+#include "tracker/ekf.h"
+#include "tracker/perception.h"
+#include "tracker/pose_init.h"
+#include "tracker/stick_model.h"
+
+namespace simcap::tracker {
+
+// Lost tracking is declared when, for `lost_frames` frames in a row, the ICP residual exceeds
+// `lost_distance_m` or more than `lost_outside_fraction` of the model's sticks lie outside the
+// hull. The tracker then searches upright hypotheses (plus the current pose) and restarts the
+// filter from the best-scoring one.
+struct RecoveryOptions {
+  double lost_distance_m = 0.05;
+  double lost_outside_fraction = 0.25;
+  int lost_frames = 3;
+  int headings = 12;  // upright hypotheses around the circle when the feet give no direction
+};
+
+struct TrackerOptions {
+  JointSet joints = JointSet::urdf;
+  IcpOptions icp;
+  FilterNoise filter;
+  RecoveryOptions recovery;
+  bool use_filter = true;
+};
+
+struct TrackStep {
+  StickPose pose;  // the estimate for this frame
+  IcpResult icp;
+  double outside_fraction = 0;  // of points sampled along the sticks, outside the hull
+  bool reinitialized = false;
+  std::string reason;  // why tracking was declared lost
+  double icp_ms = 0, filter_ms = 0;
+};
+
+class MoschiniTracker {
+ public:
+  MoschiniTracker(const BodyDimensions& dims, const TrackerOptions& options = {});
+  const StickModel& model() const { return model_; }
+
+  // Starts from a known pose (--init gt).
+  void start(const StickPose& pose);
+  // Starts from the hull of a person standing upright (--init auto): the best of
+  // upright_hypotheses() after ICP.
+  void start_upright(const Observation& obs);
+  bool started() const { return started_; }
+
+  TrackStep step(const Observation& obs);
+  int reinitializations() const { return reinitializations_; }
+
+  // What ICP fits on this frame.
+  static IcpTargets targets_of(const Observation& obs);
+  // Lower is better: ICP residual plus penalties for unexplained points and sticks off the hull.
+  double score(const StickPose& pose, const Observation& obs, IcpResult* fit = nullptr,
+               double* outside = nullptr) const;
+  // Fraction of points sampled every voxel along the sticks that lie off the hull.
+  double outside_fraction(const StickPose& pose, const Occupancy& hull) const;
+
+ private:
+  StickPose best_upright(const Observation& obs, const StickPose* current) const;
+  // When the fitted legs cross (the left foot or knee right of the right one in the torso's
+  // frame), tries them exchanged and keeps whichever the hull and centerline favour: walking
+  // legs pass close by each other, and the centerline points can lead each leg onto the other.
+  void resolve_crossed_legs(const IcpTargets& targets, StickPose& pose) const;
+
+  StickModel model_;
+  TrackerOptions options_;
+  ArticulatedIcp icp_;
+  PoseRefiner refiner_;
+  PoseFilter filter_;
+  StickPose pose_;
+  bool started_ = false;
+  int lost_streak_ = 0;
+  int reinitializations_ = 0;
+};
+
+}  // namespace simcap::tracker

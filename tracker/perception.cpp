@@ -1,0 +1,66 @@
+#include "tracker/perception.h"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+
+namespace simcap::tracker {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+Perception::Perception(const Dataset& dataset, SilhouetteMethod method,
+                       const PerceptionOptions& options)
+    : dataset_(&dataset),
+      options_(options),
+      silhouettes_(dataset, method, options.silhouettes),
+      hull_(dataset.cameras(), options.hull) {}
+
+Observation Perception::observe(int frame, bool compare_masks) const {
+  using Clock = std::chrono::steady_clock;
+  Observation obs;
+  obs.frame = frame;
+  const int nc = dataset_->camera_count();
+  std::vector<cv::Mat> silhouettes(nc);
+  if (compare_masks) obs.silhouette_iou.assign(nc, 0.0);
+  auto t = Clock::now();
+  tbb::parallel_for(0, nc, [&](int c) {
+    silhouettes[c] = silhouettes_.extract(c, frame);
+    if (compare_masks)
+      obs.silhouette_iou[c] = silhouette_iou(silhouettes[c], dataset_->mask(c, frame));
+  });
+  obs.silhouettes_ms = ms_since(t);
+  t = Clock::now();
+  hull_.carve(silhouettes, obs.hull);
+  obs.hull_ms = ms_since(t);
+  t = Clock::now();
+  obs.centerline = centerline(obs.hull, options_.skeleton);
+  obs.points.reserve(obs.centerline.size());
+  for (const CenterlinePoint& p : obs.centerline) obs.points.push_back(p.position);
+  if (options_.surface_stride > 0) {
+    // Occupied cells with an empty (or out-of-box) face neighbour, every n-th by (x + y + z).
+    const Occupancy& h = obs.hull;
+    const int sx = h.size.x(), sy = h.size.y(), sz = h.size.z();
+    const size_t row = static_cast<size_t>(sx), plane = static_cast<size_t>(sx) * sz;
+    for (int y = 0; y < sy; ++y) {
+      for (int z = 0; z < sz; ++z) {
+        const std::uint8_t* c = h.cells.data() + y * plane + z * row;
+        for (int x = 0; x < sx; ++x) {
+          if (!c[x] || (x + y + z) % options_.surface_stride != 0) continue;
+          const bool inner = x > 0 && x < sx - 1 && y > 0 && y < sy - 1 && z > 0 && z < sz - 1 &&
+                             c[x - 1] && c[x + 1] && c[x - row] && c[x + row] && c[x - plane] &&
+                             c[x + plane];
+          if (!inner) obs.surface.push_back(h.grid.center(h.lo + Eigen::Vector3i(x, y, z)));
+        }
+      }
+    }
+  }
+  obs.centerline_ms = ms_since(t);
+  return obs;
+}
+
+}  // namespace simcap::tracker

@@ -1,0 +1,49 @@
+// The image-side stages of Moschini's pipeline for one frame: silhouettes, visual hull and
+// centerline points. Frames are independent here, so several can be observed at once.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "tracker/articulated_icp.h"
+#include "tracker/dataset.h"
+#include "tracker/silhouettes.h"
+#include "tracker/skeletonize.h"
+#include "tracker/visual_hull.h"
+
+namespace simcap::tracker {
+
+struct PerceptionOptions {
+  HullOptions hull;
+  SkeletonOptions skeleton;
+  SilhouetteOptions silhouettes;
+  // Every n-th surface voxel (by (x + y + z) mod n) goes to ICP; 0 = none.
+  int surface_stride = 5;
+};
+
+struct Observation {
+  int frame = 0;
+  Occupancy hull;
+  std::vector<CenterlinePoint> centerline;
+  std::vector<Eigen::Vector3d> points;   // centerline positions, for ICP
+  std::vector<Eigen::Vector3d> surface;  // hull surface voxels (a subsample), for ICP
+  std::vector<double> silhouette_iou;    // per camera vs the dataset's masks, when asked for
+  double silhouettes_ms = 0, hull_ms = 0, centerline_ms = 0;
+};
+
+class Perception {
+ public:
+  Perception(const Dataset& dataset, SilhouetteMethod method, const PerceptionOptions& options);
+  // Thread-safe. With `compare_masks`, also scores the silhouettes against camNN/mask.
+  Observation observe(int frame, bool compare_masks = false) const;
+  const VisualHull& hull() const { return hull_; }
+  const SilhouetteExtractor& silhouettes() const { return silhouettes_; }
+
+ private:
+  const Dataset* dataset_;
+  PerceptionOptions options_;
+  SilhouetteExtractor silhouettes_;
+  VisualHull hull_;
+};
+
+}  // namespace simcap::tracker

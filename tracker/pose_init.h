@@ -1,0 +1,65 @@
+// Where tracking starts: body dimensions and a first pose, either from ground-truth joints
+// (--init gt, Moschini §7.1) or from the hull of a person standing upright (--init auto).
+#pragma once
+
+#include <Eigen/Core>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/joint_track.h"
+#include "tracker/stick_model.h"
+#include "tracker/visual_hull.h"
+
+namespace simcap::tracker {
+
+using NamedJoints = std::map<std::string, Eigen::Vector3d>;
+
+// The joints of `track` at `frame`; throws Error naming `source` when the frame is absent.
+NamedJoints joints_at(const JointTrack& track, int frame, const std::string& source);
+
+// Stick lengths and torso shape measured on one frame of H-Anim joints (at least the HE15 set;
+// skull_tip and l/r_hand_tip are used when present, else the neutral humanoid's proportions
+// extend the head and forearm sticks to the head top and finger tips). The torso axis runs
+// from the hip midpoint to vc7; d_s and d_h are measured, as the thesis did on HumanEva.
+BodyDimensions dimensions_from_joints(const NamedJoints& joints, const std::string& source);
+
+// The stick pose closest to the joints: torso frame from hips, vc7 and shoulders; limbs pointed
+// at the measured joints; the shoulder twist from the elbow's bending plane.
+StickPose pose_from_joints(const StickModel& model, const NamedJoints& joints,
+                           const std::string& source);
+
+// How far the hull's centerline runs from the torso and head joint lines on a frame whose pose
+// is known: per stick, the median offset across its axis of the points nearest its middle
+// (zero for the limbs, whose centroids follow the bones, and where too few points fall).
+std::array<Eigen::Vector3d, kSegmentCount> measure_centerline_offsets(
+    const StickModel& model, const StickPose& pose, const std::vector<Eigen::Vector3d>& points);
+
+// Radius of each stick's part of the hull on a frame whose pose is known: the median distance
+// of the surface voxels nearest each stick's middle to its centerline; for the torso its depth
+// and half-width (voxels within 30 degrees of its forward and lateral axes). Sets
+// dims.radius and dims.torso_width.
+void measure_radii(BodyDimensions& dims, JointSet joints, const StickPose& pose,
+                   const std::vector<Eigen::Vector3d>& surface);
+
+// Dimensions for a person of `height_m`: simcap's humanoid (Drillis-Contini proportions)
+// scaled to that height, with Table 5.3's d_s = 0.8 and d_H = 0.7 for the torso.
+BodyDimensions dimensions_from_height(double height_m);
+
+// What the hull says about a person standing upright on the floor y = 0.
+struct UprightCue {
+  double top_y = 0;                                    // highest occupied voxel centre (head top)
+  Eigen::Vector2d torso_xz = Eigen::Vector2d::Zero();  // hull centroid in the torso's height band
+  // Horizontal direction the person faces, from the feet pointing forward of the shins; empty
+  // when the offset is too small to tell.
+  std::optional<Eigen::Vector2d> forward_xz;
+};
+UprightCue upright_cue(const Occupancy& hull, const BodyDimensions& dims);
+
+// Upright poses at several headings (around the feet's direction when known, else the whole
+// circle), arms hanging slightly apart: starting points for ICP.
+std::vector<StickPose> upright_hypotheses(const StickModel& model, const UprightCue& cue,
+                                          int headings);
+
+}  // namespace simcap::tracker

@@ -1,0 +1,322 @@
+#include "tracker/pose_refiner.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+namespace simcap::tracker {
+namespace {
+
+// Centre of the occupied voxel nearest to `x` within `radius` voxels (Chebyshev shells), or
+// empty; `x` itself when its voxel is occupied.
+std::optional<Eigen::Vector3d> nearest_occupied(const Occupancy& hull, const Eigen::Vector3d& x,
+                                                int radius) {
+  const Eigen::Vector3i c = hull.grid.index(x);
+  if (hull.occupied(c)) return x;
+  for (int r = 1; r <= radius; ++r) {
+    double best = std::numeric_limits<double>::infinity();
+    Eigen::Vector3d found;
+    for (int dy = -r; dy <= r; ++dy) {
+      for (int dz = -r; dz <= r; ++dz) {
+        for (int dx = -r; dx <= r; ++dx) {
+          if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) != r) continue;
+          const Eigen::Vector3i v = c + Eigen::Vector3i(dx, dy, dz);
+          if (!hull.occupied(v)) continue;
+          const Eigen::Vector3d p = hull.grid.center(v);
+          const double d = (p - x).squaredNorm();
+          if (d < best) best = d, found = p;
+        }
+      }
+    }
+    if (best < std::numeric_limits<double>::infinity()) return found;
+  }
+  return std::nullopt;
+}
+
+// The Jacobian of a point carried by one segment: only the torso's six parameters and the
+// angles of the segment's chain (at most six) are non-zero, so it is kept in compact form.
+struct PointJacobian {
+  static constexpr int kMax = 12;
+  std::array<int, kMax> index{};  // parameter of each column
+  int n = 0;
+  Eigen::Matrix<double, 3, kMax> J = Eigen::Matrix<double, 3, kMax>::Zero();
+};
+
+// Accumulates weighted residuals into the normal equations and the cost.
+class Normal {
+  using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, PointJacobian::kMax,
+                            PointJacobian::kMax>;
+  using Vec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, PointJacobian::kMax, 1>;
+
+ public:
+  Normal(const StickModel& model, const StickGeometry& g, const StickPose& pose, Eigen::MatrixXd* H,
+         Eigen::VectorXd* rhs)
+      : g_(g), pose_(pose), H_(H), rhs_(rhs) {
+    for (int s = 0; s < kSegmentCount; ++s) chains_[s] = model.chain_angles(s);
+  }
+
+  // d(point)/d(parameters) for a point carried by `segment`: torso translation, torso rotation
+  // as a left increment about t0, then the chain's angles.
+  PointJacobian jacobian(int segment, const Eigen::Vector3d& p) const {
+    PointJacobian j;
+    for (int i = 0; i < 6; ++i) j.index[i] = i;
+    j.J.leftCols<3>().setIdentity();
+    const Eigen::Vector3d d = p - pose_.t0;
+    j.J.block<3, 3>(0, 3) << 0, d.z(), -d.y(), -d.z(), 0, d.x(), d.y(), -d.x(), 0;
+    j.n = 6;
+    for (const int k : chains_[segment]) {
+      j.index[j.n] = 6 + k;
+      j.J.col(j.n) = g_.axis[k].cross(p - g_.pivot[k]);
+      ++j.n;
+    }
+    return j;
+  }
+  // A vector residual r (data - model) whose model point has Jacobian j.
+  void add(const PointJacobian& j, const Eigen::Vector3d& r, double w2) {
+    cost_ += w2 * r.squaredNorm();
+    ++count_;
+    if (!H_) return;
+    const auto J = j.J.leftCols(j.n);
+    const Mat JtJ = w2 * J.transpose() * J;
+    const Vec Jtr = w2 * J.transpose() * r;
+    scatter(j, JtJ, Jtr);
+  }
+  // A scalar residual e (minimized towards 0) whose gradient is n^T times the Jacobian j.
+  void add_scalar(const PointJacobian& j, const Eigen::Vector3d& n, double e, double w2) {
+    cost_ += w2 * e * e;
+    ++count_;
+    if (!H_) return;
+    const Vec g = j.J.leftCols(j.n).transpose() * n;
+    const Mat gg = w2 * g * g.transpose();
+    const Vec ge = -w2 * e * g;
+    scatter(j, gg, ge);
+  }
+  // A scalar residual e on one parameter with slope `slope`.
+  void add_parameter(int parameter, double slope, double e) {
+    cost_ += e * e;
+    ++count_;
+    if (!H_) return;
+    (*H_)(parameter, parameter) += slope * slope;
+    (*rhs_)(parameter) -= slope * e;
+  }
+  double cost() const { return count_ ? cost_ / count_ : 0.0; }
+
+ private:
+  void scatter(const PointJacobian& j, const Mat& JtJ, const Vec& Jtr) {
+    for (int a = 0; a < j.n; ++a) {
+      (*rhs_)(j.index[a]) += Jtr(a);
+      for (int b = 0; b < j.n; ++b) (*H_)(j.index[a], j.index[b]) += JtJ(a, b);
+    }
+  }
+  const StickGeometry& g_;
+  const StickPose& pose_;
+  Eigen::MatrixXd* H_;
+  Eigen::VectorXd* rhs_;
+  std::array<std::vector<int>, kSegmentCount> chains_;
+  double cost_ = 0;
+  int count_ = 0;
+};
+
+// Signed distance of `v` to the capsule of segment `s` (an elliptic cylinder along the torso's
+// middle), with the outward normal there and the foot of `v` on the stick.
+bool surface_distance(const StickGeometry& g, const BodyDimensions& dims, int s,
+                      const Eigen::Vector3d& v, double* d, Eigen::Vector3d* dir) {
+  const Eigen::Vector3d ab = g.line_distal[s] - g.line_proximal[s];
+  const double t = std::clamp((v - g.line_proximal[s]).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  const Eigen::Vector3d dv = v - g.line_proximal[s] - t * ab;
+  if (s == kTorso && dims.torso_width > 0 && t > 0 && t < 1) {
+    // First-order distance to the ellipse x²/a² + z²/b² = 1 in the torso's frame.
+    const Eigen::Matrix3d& R0 = g.rotation[kTorso];
+    const Eigen::Vector3d p = R0.transpose() * dv;
+    const double a = dims.torso_width, b = dims.radius[kTorso];
+    const double rho = std::hypot(p.x() / a, p.z() / b);
+    const Eigen::Vector3d grad(p.x() / (a * a), 0, p.z() / (b * b));
+    if (!(rho > 1e-9) || grad.norm() < 1e-12) return false;
+    *d = (rho - 1) * rho / grad.norm();
+    *dir = R0 * grad.normalized();
+    return true;
+  }
+  if (dv.norm() < 1e-9) return false;
+  *d = dv.norm() - dims.radius[s];
+  *dir = dv.normalized();
+  return true;
+}
+
+}  // namespace
+
+PoseRefiner::PoseRefiner(const StickModel& model, const RefineOptions& options)
+    : model_(&model), options_(options) {}
+
+// Which stick each residual belongs to, decided once per iteration (as ICP fixes its closest
+// points before solving) so that a candidate step is judged on the same residuals.
+struct PoseRefiner::Associations {
+  std::vector<std::pair<int, int>> points;  // (point, segment), X84 inliers
+  struct Sample {
+    int segment;
+    double along;  // on the joint line, 0 proximal, 1 distal
+    Eigen::Vector3d target;
+  };
+  std::vector<Sample> contained;             // stick samples off the hull
+  std::vector<std::pair<int, int>> surface;  // (voxel, segment), X84 inliers
+};
+
+PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
+                                                 const StickPose& pose) const {
+  const StickGeometry g = model_->geometry(pose);
+  Associations a;
+  // Centerline points: closest stick (Moschini's data-to-model matching), X84 inliers.
+  std::vector<ClosestStick> closest(targets.points.size());
+  std::vector<double> distances(targets.points.size());
+  for (size_t i = 0; i < targets.points.size(); ++i) {
+    closest[i] = closest_stick(g, targets.points[i]);
+    distances[i] = closest[i].distance;
+  }
+  const double limit = x84_threshold(distances, options_.x84_k, options_.x84_floor_m);
+  for (size_t i = 0; i < closest.size(); ++i) {
+    if (closest[i].distance <= limit)
+      a.points.emplace_back(static_cast<int>(i), closest[i].segment);
+  }
+  // Containment: stick samples off the hull and the nearest occupied voxel to each.
+  if (targets.hull && targets.hull->count > 0 && options_.containment_weight > 0) {
+    const Occupancy& hull = *targets.hull;
+    for (int s = 0; s < kSegmentCount; ++s) {
+      const Eigen::Vector3d ab = g.distal[s] - g.proximal[s];
+      const int count = std::max(2, static_cast<int>(ab.norm() / (2 * hull.grid.voxel)));
+      for (int i = 1; i <= count; ++i) {
+        const double along = static_cast<double>(i) / count;
+        const Eigen::Vector3d x = g.proximal[s] + along * ab;
+        const auto inside = nearest_occupied(hull, x, options_.containment_search);
+        if (inside && (*inside - x).norm() >= hull.grid.voxel) {
+          a.contained.push_back({s, along, *inside});
+        }
+      }
+    }
+  }
+  // Surface voxels: the capsule they lie nearest to, X84 inliers on the distance.
+  const BodyDimensions& dims = model_->dimensions();
+  if (!targets.surface.empty() && options_.surface_weight > 0) {
+    std::vector<int> owner(targets.surface.size(), -1);
+    std::vector<double> magnitude(targets.surface.size());
+    for (size_t i = 0; i < targets.surface.size(); ++i) {
+      double best = std::numeric_limits<double>::infinity(), d;
+      Eigen::Vector3d dir;
+      for (int s = 0; s < kSegmentCount; ++s) {
+        if (dims.radius[s] > 0 && surface_distance(g, dims, s, targets.surface[i], &d, &dir) &&
+            d < best) {
+          best = d;
+          owner[i] = s;
+        }
+      }
+      magnitude[i] = std::abs(best);
+    }
+    const double surface_limit = x84_threshold(magnitude, options_.x84_k, options_.x84_floor_m);
+    for (size_t i = 0; i < owner.size(); ++i) {
+      if (owner[i] >= 0 && magnitude[i] <= surface_limit) {
+        a.surface.emplace_back(static_cast<int>(i), owner[i]);
+      }
+    }
+  }
+  return a;
+}
+
+double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
+                             const StickPose& pose, Eigen::MatrixXd* H,
+                             Eigen::VectorXd* rhs) const {
+  const StickGeometry g = model_->geometry(pose);
+  Normal normal(*model_, g, pose, H, rhs);
+  // Centerline points: only the distance across a stick's line counts, except past a free tip.
+  for (const auto& [i, s] : a.points) {
+    const Eigen::Vector3d& x = targets.points[i];
+    const Eigen::Vector3d ab = g.line_distal[s] - g.line_proximal[s];
+    const double raw = (x - g.line_proximal[s]).dot(ab) / ab.squaredNorm();
+    const bool free_tip = raw > 1 && (s == kHead || s == kLForearm || s == kRForearm);
+    const Eigen::Vector3d match = g.line_proximal[s] + (free_tip ? 1.0 : raw) * ab;
+    PointJacobian j = normal.jacobian(s, match);
+    Eigen::Vector3d r = x - match;
+    if (!free_tip) {
+      const Eigen::Vector3d u = ab.normalized();
+      const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - u * u.transpose();
+      j.J = P * j.J;
+      r = P * r;
+    }
+    normal.add(j, r, 1.0);
+  }
+  const double wc2 = options_.containment_weight * options_.containment_weight;
+  for (const auto& c : a.contained) {
+    const Eigen::Vector3d x =
+        g.proximal[c.segment] + c.along * (g.distal[c.segment] - g.proximal[c.segment]);
+    normal.add(normal.jacobian(c.segment, x), c.target - x, wc2);
+  }
+  // Surface: the voxel is fixed and the capsule surface moves with its segment, de = -n · dp.
+  const BodyDimensions& dims = model_->dimensions();
+  const double ws2 = options_.surface_weight * options_.surface_weight;
+  for (const auto& [i, s] : a.surface) {
+    double e;
+    Eigen::Vector3d dir;
+    if (!surface_distance(g, dims, s, targets.surface[i], &e, &dir)) continue;
+    const Eigen::Vector3d surface_point = targets.surface[i] - e * dir;
+    normal.add_scalar(normal.jacobian(s, surface_point), -dir, e, ws2);
+  }
+  auto prior = [&](std::initializer_list<int> angles, double slope) {
+    if (slope <= 0) return;
+    for (const int k : angles) {
+      if (k < model_->angle_count()) normal.add_parameter(6 + k, slope, slope * pose.theta[k]);
+    }
+  };
+  prior({kLHip1, kRHip1, kLHipTwist, kRHipTwist}, options_.leg_prior_m_per_rad);
+  prior({kLShoulder1, kRShoulder1, kLShoulder2, kRShoulder2, kLShoulder3, kRShoulder3, kLElbow,
+         kRElbow},
+        options_.arm_prior_m_per_rad);
+  return normal.cost();
+}
+
+double PoseRefiner::cost(const IcpTargets& targets, const StickPose& pose) const {
+  return evaluate(targets, associate(targets, pose), pose, nullptr, nullptr);
+}
+
+void PoseRefiner::refine(const IcpTargets& targets, StickPose& pose) const {
+  const int na = model_->angle_count();
+  const int np = 6 + na;
+  const auto& ranges = model_->ranges();
+  // Levenberg-Marquardt: the damping shrinks after a step that lowers the cost and grows (the
+  // step is retried) after one that does not.
+  double lambda = options_.damping;
+  for (int it = 0; it < options_.iterations; ++it) {
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(np, np);
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(np);
+    const Associations assoc = associate(targets, pose);
+    const double cost = evaluate(targets, assoc, pose, &H, &rhs);
+    const double scale = H.diagonal().mean();
+    if (!(scale > 0)) return;
+    bool improved = false;
+    for (int attempt = 0; attempt < 4 && !improved; ++attempt) {
+      Eigen::MatrixXd A = H;
+      A.diagonal().array() += lambda * scale;
+      const Eigen::VectorXd step = A.ldlt().solve(rhs);
+      if (!step.allFinite()) return;
+      StickPose next = pose;
+      next.t0 += step.head<3>();
+      const Eigen::Vector3d rot = step.segment<3>(3);
+      if (rot.norm() > 0) next.R0 = Eigen::AngleAxisd(rot.norm(), rot.normalized()) * next.R0;
+      for (int k = 0; k < na; ++k) {
+        next.theta[k] = limit_angle(next.theta[k] + step(6 + k), ranges[k]);
+      }
+      const double next_cost = evaluate(targets, assoc, next, nullptr, nullptr);
+      if (next_cost < cost) {
+        pose = next;
+        lambda = std::max(lambda / 3, 1e-6);
+        improved = true;
+        if (cost - next_cost < options_.tolerance * cost) return;
+      } else {
+        lambda *= 4;
+      }
+    }
+    if (!improved) return;
+  }
+}
+
+}  // namespace simcap::tracker

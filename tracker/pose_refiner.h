@@ -1,0 +1,54 @@
+// Joint Levenberg-Marquardt refinement of a stick pose against all of a frame's targets at
+// once, run after Moschini's per-segment ICP; also scores poses for hypothesis tests.
+#pragma once
+
+#include "tracker/icp_targets.h"
+#include "tracker/stick_model.h"
+
+namespace simcap::tracker {
+
+// Not in the thesis, which notes that in its hierarchical ICP an error in one limb "propagates
+// downward without recovery": the torso is fitted first, pulled by limbs still in the previous
+// frame's pose, and never revisited. Weights are per residual, relative to a centerline point.
+struct RefineOptions {
+  int iterations = 5;
+  double tolerance = 1e-3;  // stop when a step lowers the cost by less than this fraction
+  // Initial Levenberg damping relative to the mean diagonal of J^T J (adapted after each step).
+  double damping = 0.01;
+  double x84_k = 3.5;
+  double x84_floor_m = 0.02;
+  double containment_weight = 1.0;  // per stick sample off the hull
+  int containment_search = 6;       // voxels searched around a sample for the nearest occupied
+  double surface_weight = 0.3;      // per hull surface voxel
+  // A weak prior towards the neutral pose on hip abduction and twist, as a residual of this
+  // many metres per radian: people walk and stand with their legs swinging fore and aft. A
+  // torso turned away from the true heading must spread the legs sideways to reach their data,
+  // so the prior turns the torso back (its heading is otherwise barely observed: 4 corner views
+  // give a near-round hull around a torso, and the arms often merge with it).
+  double leg_prior_m_per_rad = 0.3;
+  // The same towards hanging arms (shoulder angles and elbow flexion): an arm whose slices merge
+  // with the torso has no data and would otherwise keep whatever pose the last stray points left.
+  double arm_prior_m_per_rad = 0.0;
+};
+
+class PoseRefiner {
+ public:
+  PoseRefiner(const StickModel& model, const RefineOptions& options = {});
+  // Gauss-Newton steps on the torso's translation and rotation and all joint angles; the angles
+  // stay in their ranges.
+  void refine(const IcpTargets& targets, StickPose& pose) const;
+  // The weighted sum of squared residuals refine() minimizes, per residual; lower is better.
+  double cost(const IcpTargets& targets, const StickPose& pose) const;
+  const RefineOptions& options() const { return options_; }
+
+ private:
+  struct Associations;
+  Associations associate(const IcpTargets& targets, const StickPose& pose) const;
+  // The cost at `pose` with fixed associations, and the normal equations when H and g are given.
+  double evaluate(const IcpTargets& targets, const Associations& a, const StickPose& pose,
+                  Eigen::MatrixXd* H, Eigen::VectorXd* g) const;
+  const StickModel* model_;
+  RefineOptions options_;
+};
+
+}  // namespace simcap::tracker

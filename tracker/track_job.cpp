@@ -1,0 +1,219 @@
+#include "tracker/track_job.h"
+
+#include <tbb/parallel_pipeline.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <opencv2/core/utility.hpp>
+#include <optional>
+
+#include "core/csv.h"
+#include "core/error.h"
+#include "core/joint_track.h"
+#include "core/progress.h"
+#include "models/humanoid.h"
+#include "tracker/dataset.h"
+#include "tracker/pose_init.h"
+#include "tracker/sik_track_job.h"
+
+namespace simcap {
+namespace fs = std::filesystem;
+using namespace tracker;
+
+namespace {
+
+// The hull's working volume: the room from scene.yaml kept 10 cm off the walls and below
+// 2.3 m (no one is taller), else Moschini-sized defaults around the origin.
+Eigen::AlignedBox3d working_volume(const Dataset& ds) {
+  const auto room = ds.room();
+  if (!room) return HullOptions{}.volume;
+  Eigen::Vector3d lo = room->min(), hi = room->max();
+  lo.x() += 0.1, lo.z() += 0.1, hi.x() -= 0.1, hi.z() -= 0.1;
+  hi.y() = std::min(hi.y(), 2.3);
+  return {lo, hi};
+}
+
+// How many first frames --init auto measures the standing height on.
+constexpr int kHeightFrames = 5;
+
+}  // namespace
+
+TrackSummary run_moschini(const fs::path& dataset_path, const TrackOptions& options, int max_frames,
+                          const MoschiniSink& sink) {
+  if (options.init != "gt" && options.init != "auto") {
+    throw Error("--init: unknown initialization '" + options.init + "' (expected gt or auto)");
+  }
+  const Dataset ds(dataset_path);
+  const SilhouetteMethod method = parse_silhouette_method(options.silhouettes);
+  PerceptionOptions popt;
+  popt.hull.voxel_m = options.voxel_m;
+  popt.hull.volume = working_volume(ds);
+  const Perception perception(ds, method, popt);
+  std::vector<int> frames = ds.frames(perception.silhouettes().image_kind());
+  if (max_frames >= 0 && static_cast<int>(frames.size()) > max_frames) frames.resize(max_frames);
+  const bool compare_masks =
+      method != SilhouetteMethod::gt && fs::is_directory(ds.root() / ds.cameras()[0].name / "mask");
+
+  TrackerOptions topt;
+  topt.joints = parse_joint_set(options.joints);
+  std::optional<MoschiniTracker> tracker;
+  if (options.init == "gt") {
+    // The first frame's joints give the sticks, the pose, and where the hull's centerline runs
+    // relative to the torso and head joint lines.
+    const JointTrack gt = ds.ground_truth("--init gt");
+    const std::string source = ds.ground_truth_path().string();
+    const NamedJoints joints = joints_at(gt, frames.front(), source);
+    BodyDimensions dims = dimensions_from_joints(joints, source);
+    const StickModel plain(dims, topt.joints);
+    const StickPose start = pose_from_joints(plain, joints, source);
+    const Observation first = perception.observe(frames.front());
+    dims.centerline_offset = measure_centerline_offsets(plain, start, first.points);
+    measure_radii(dims, topt.joints, start, first.surface);
+    tracker.emplace(dims, topt);
+    tracker->start(start);
+  } else {
+    // Assumption: in the first frames the person stands upright on the floor; the hull's top is
+    // the head top, and the humanoid's proportions scaled to that height give the sticks.
+    std::vector<double> tops;
+    std::vector<Observation> first;
+    for (int i = 0; i < std::min<int>(kHeightFrames, static_cast<int>(frames.size())); ++i) {
+      first.push_back(perception.observe(frames[i]));
+      if (first.back().hull.count > 0) tops.push_back(upright_cue(first.back().hull, {}).top_y);
+    }
+    if (tops.empty()) {
+      throw Error(dataset_path.string() + ": --init auto found no body in the first frames' hulls");
+    }
+    std::nth_element(tops.begin(), tops.begin() + tops.size() / 2, tops.end());
+    // The hull radii need a pose: the first fit, then the tracker restarts with them.
+    BodyDimensions dims = dimensions_from_height(tops[tops.size() / 2]);
+    MoschiniTracker finder(dims, topt);
+    finder.start_upright(first.front());
+    const StickPose start = finder.step(first.front()).pose;
+    measure_radii(dims, topt.joints, start, first.front().surface);
+    tracker.emplace(dims, topt);
+    tracker->start(start);
+  }
+
+  // Frames are observed in parallel; OpenCV's own worker threads inside each would only compete
+  // for the same cores.
+  const int opencv_threads = cv::getNumThreads();
+  cv::setNumThreads(1);
+  struct RestoreThreads {
+    int n;
+    ~RestoreThreads() { cv::setNumThreads(n); }
+  } restore{opencv_threads};
+  Progress progress("track", static_cast<long>(frames.size()), options.quiet);
+  const auto t0 = std::chrono::steady_clock::now();
+  size_t next = 0;
+  tbb::parallel_pipeline(
+      8, tbb::make_filter<void, int>(tbb::filter_mode::serial_in_order,
+                                     [&](tbb::flow_control& fc) {
+                                       if (next >= frames.size()) {
+                                         fc.stop();
+                                         return 0;
+                                       }
+                                       return frames[next++];
+                                     }) &
+             tbb::make_filter<int, std::shared_ptr<Observation>>(
+                 tbb::filter_mode::parallel,
+                 [&](int frame) {
+                   return std::make_shared<Observation>(perception.observe(frame, compare_masks));
+                 }) &
+             tbb::make_filter<std::shared_ptr<Observation>, void>(
+                 tbb::filter_mode::serial_in_order, [&](const std::shared_ptr<Observation>& obs) {
+                   const TrackStep step = tracker->step(*obs);
+                   sink(*obs, step, tracker->model());
+                   progress.advance();
+                 }));
+  progress.finish();
+  TrackSummary summary;
+  summary.frames = static_cast<int>(frames.size());
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  summary.reinitializations = tracker->reinitializations();
+  return summary;
+}
+
+TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
+                           const TrackOptions& options) {
+  if (options.method == "sik") {
+    const auto t0 = std::chrono::steady_clock::now();
+    track_dataset_sik(dataset, out, {options.sik_noise_m, options.seed, options.quiet});
+    TrackSummary summary;
+    summary.frames = static_cast<int>(read_joint_track(out / "joints3d.csv").frames.size());
+    summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    summary.track = out;
+    return summary;
+  }
+  if (options.method != "moschini") {
+    throw Error("--method: unknown tracker '" + options.method + "' (expected moschini or sik)");
+  }
+  if (!(options.voxel_m > 0)) throw Error("--voxel: must be positive");
+  const fs::path diag = out / "diagnostics";
+  fs::create_directories(diag);
+  JointTrack track;
+  track.joints = he15_joints();
+  CsvWriter centerline(diag / "centerline.csv", {"frame", "axis", "x", "y", "z", "voxels"});
+  CsvWriter timings(diag / "timings.csv",
+                    {"frame", "silhouettes_ms", "hull_ms", "centerline_ms", "icp_ms", "filter_ms",
+                     "voxels", "points", "icp_residual_mm", "inlier_fraction", "outside_fraction"});
+  CsvWriter reinit(diag / "reinitializations.csv", {"frame", "reason"});
+  std::optional<CsvWriter> iou;
+  std::optional<BodyDimensions> dims;
+  char buf[256];
+  const TrackSummary run = run_moschini(
+      dataset, options, -1,
+      [&](const Observation& obs, const TrackStep& step, const StickModel& model) {
+        if (!dims) dims = model.dimensions();
+        track.add_frame(obs.frame, model.he15(step.pose));
+        for (const CenterlinePoint& p : obs.centerline) {
+          std::snprintf(buf, sizeof buf, "%d,%c,%.4f,%.4f,%.4f,%d\n", obs.frame, "xyz"[p.axis],
+                        p.position.x(), p.position.y(), p.position.z(), p.voxels);
+          centerline.out() << buf;
+        }
+        std::snprintf(buf, sizeof buf, "%d,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%zu,%.1f,%.3f,%.3f\n",
+                      obs.frame, obs.silhouettes_ms, obs.hull_ms, obs.centerline_ms, step.icp_ms,
+                      step.filter_ms, obs.hull.count, obs.points.size(),
+                      step.icp.mean_distance_m * 1000, step.icp.inlier_fraction,
+                      step.outside_fraction);
+        timings.out() << buf;
+        if (step.reinitialized) reinit.out() << obs.frame << "," << step.reason << "\n";
+        if (!obs.silhouette_iou.empty()) {
+          if (!iou)
+            iou.emplace(diag / "silhouette_iou.csv",
+                        std::vector<std::string>{"frame", "camera", "iou"});
+          for (size_t c = 0; c < obs.silhouette_iou.size(); ++c) {
+            std::snprintf(buf, sizeof buf, "%d,%zu,%.4f\n", obs.frame, c, obs.silhouette_iou[c]);
+            iou->out() << buf;
+          }
+        }
+      });
+  CsvWriter body(diag / "body_dimensions.csv", {"dimension", "value"});
+  const std::pair<const char*, double> values[] = {{"torso_half", dims->torso_half},
+                                                   {"shoulder_half", dims->shoulder_half},
+                                                   {"d_s", dims->d_s},
+                                                   {"d_h", dims->d_h},
+                                                   {"head", dims->head},
+                                                   {"upper_arm", dims->upper_arm},
+                                                   {"forearm", dims->forearm},
+                                                   {"thigh", dims->thigh},
+                                                   {"calf", dims->calf},
+                                                   {"root_above_hips", dims->root_above_hips},
+                                                   {"skullbase_fraction", dims->skullbase_fraction},
+                                                   {"wrist_fraction", dims->wrist_fraction}};
+  for (const auto& [name, value] : values) {
+    std::snprintf(buf, sizeof buf, "%s,%.5f\n", name, value);
+    body.out() << buf;
+  }
+  body.commit();
+  centerline.commit();
+  timings.commit();
+  reinit.commit();
+  if (iou) iou->commit();
+  write_joint_track(out / "joints3d.csv", track);
+  TrackSummary summary = run;
+  summary.track = out;
+  return summary;
+}
+
+}  // namespace simcap

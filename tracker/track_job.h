@@ -1,0 +1,45 @@
+// `simcap track`: runs a tracker over a dataset and writes TRACK/joints3d.csv (HE15, H-Anim
+// names) plus TRACK/diagnostics/. Moschini's pipeline is here; --method sik calls SIK's back-end
+// (tracker/sik_track_job.h).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "tracker/moschini_tracker.h"
+#include "tracker/perception.h"
+
+namespace simcap {
+
+struct TrackOptions {
+  std::string method = "moschini";  // moschini | sik
+  std::string silhouettes = "gt";   // gt | bgsub | mog2
+  std::string init = "gt";          // gt | auto
+  std::string joints = "urdf";      // moschini (Table 5.1, 23-parameter EKF) | urdf (+ hip twists)
+  double voxel_m = 0.02;
+  bool quiet = false;
+  double sik_noise_m = 0.0;  // sik: Gaussian noise on the end-effectors, metres
+  std::uint64_t seed = 1;    // sik: seed of that noise
+};
+
+struct TrackSummary {
+  int frames = 0;
+  double seconds = 0;
+  int reinitializations = 0;
+  std::filesystem::path track;
+};
+
+TrackSummary track_dataset(const std::filesystem::path& dataset, const std::filesystem::path& out,
+                           const TrackOptions& options);
+
+// Moschini's pipeline without files: perception runs on several frames at once, tracking runs
+// in frame order, and `sink` sees every frame in order. `max_frames` < 0 means all. Used by
+// track_dataset and by `simcap bench track`.
+using MoschiniSink = std::function<void(const tracker::Observation&, const tracker::TrackStep&,
+                                        const tracker::StickModel&)>;
+TrackSummary run_moschini(const std::filesystem::path& dataset, const TrackOptions& options,
+                          int max_frames, const MoschiniSink& sink);
+
+}  // namespace simcap
