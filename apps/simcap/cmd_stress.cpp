@@ -1,11 +1,109 @@
-#include "apps/simcap/commands_pending.h"
+#include <cstdio>
+#include <map>
+#include <tuple>
+
+#include "apps/simcap/closed_loop.h"
+#include "apps/simcap/commands.h"
+#include "core/error.h"
+#include "scenes/scene.h"
+#include "validate/sweep.h"
 
 namespace simcap::cli {
+namespace fs = std::filesystem;
+
+namespace {
+
+struct StressArgs {
+  fs::path sweep, out;
+  bool keep_datasets = false;
+  bool quiet = false;
+};
+
+// Points that render the same thing share one dataset: only the tracker settings differ.
+using RenderKey =
+    std::tuple<fs::path, int, std::optional<std::uint64_t>, fs::path, std::vector<std::string>>;
+
+RenderKey render_key(const LoopConfig& c) {
+  return {c.scene, c.frames, c.seed, c.motion, c.scene_overrides};
+}
+
+void print_table(const SweepSpec& spec, const std::vector<SweepPoint>& points,
+                 const std::vector<SweepOutcome>& outcomes) {
+  std::printf("  %-24s %10s %12s %9s %9s\n", spec.axes.front().name.c_str(), "MPJPE mm",
+              "PA-MPJPE mm", "PCK@100", "failed");
+  for (size_t i = 0; i < outcomes.size(); ++i) {
+    std::string label;
+    for (const auto& l : points[i].labels) label += (label.empty() ? "" : " / ") + l;
+    const auto& ev = outcomes[i].evaluation;
+    if (!ev) {
+      std::printf("  %-24s failed: %s\n", label.c_str(), outcomes[i].error.c_str());
+      continue;
+    }
+    std::printf("  %-24s %10.1f %12.1f %8.1f%% %8.1f%%\n", label.c_str(), ev->mpjpe_mm,
+                ev->pa_mpjpe_mm, 100 * ev->pck[1].fraction, 100 * ev->failures.failed_fraction);
+  }
+}
+
+int run_stress(const StressArgs& args) {
+  const SweepSpec spec = load_sweep(args.sweep);
+  const std::vector<SweepPoint> points = sweep_points(spec);
+  // Every point's scene and tracker options are checked before the first one runs.
+  for (const auto& p : points) {
+    loop_run_of(p.config, args.sweep, args.quiet);
+    load_scene(p.config.scene, p.config.scene_overrides);
+  }
+  std::map<RenderKey, fs::path> rendered;
+  const SweepPointRunner run = [&](const SweepPoint& point, const fs::path& dir) {
+    LoopRun loop = loop_run_of(point.config, args.sweep, args.quiet);
+    const auto cached = rendered.find(render_key(point.config));
+    if (cached != rendered.end()) loop.existing_dataset = cached->second;
+    const LoopResult r = run_closed_loop(loop, dir);
+    rendered.emplace(render_key(point.config), r.dataset);
+    SweepOutcome o;
+    o.evaluation = r.validate.evaluation;
+    o.report = r.validate.report_html;
+    o.render_s = r.render_s;
+    o.track_s = r.track_s;
+    o.validate_s = r.validate_s;
+    return o;
+  };
+  const auto outcomes = run_sweep(spec, args.out, run, args.quiet);
+  if (!args.keep_datasets) {
+    for (const auto& [key, dataset] : rendered) fs::remove_all(dataset);
+  }
+  std::printf("simcap stress: %s\n",
+              spec.title.empty() ? args.sweep.string().c_str() : spec.title.c_str());
+  print_table(spec, points, outcomes);
+  std::printf("table: %s\nplot: %s\n", (args.out / "table.html").string().c_str(),
+              (args.out / "mpjpe.svg").string().c_str());
+  return 0;
+}
+
+}  // namespace
 
 void add_stress(CLI::App& app, Action& action) {
-  add_pending(app, action, "stress",
-              "Run a parameter sweep (cameras, occluders, silhouette noise) with tables and plots",
-              "#6", "simcap stress stress/cameras.yaml -o out/cameras");
+  auto* cmd = app.add_subcommand(
+      "stress",
+      "Run a parameter sweep (cameras, occluders, silhouette noise) with tables and plots");
+  static StressArgs args;
+  cmd->add_option("sweep", args.sweep, "Sweep file (YAML; see stress/*.yaml)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("-o,--output", args.out,
+                  "Output folder: table.csv, table.html, mpjpe.svg, timings.csv, points/")
+      ->required();
+  cmd->add_flag("--keep-datasets", args.keep_datasets,
+                "Keep each point's rendered dataset (by default only tracks and reports stay)");
+  cmd->add_flag("-q,--quiet", args.quiet, "No progress on stderr");
+  cmd->footer(
+      "A sweep file names a base scene, frames and tracker options, and what to vary: scene keys\n"
+      "(rig.count: [2, 3, 4]), the scene file, or tracker options (track.silhouettes). Points\n"
+      "that render the same scene share one rendered dataset.\n"
+      "Examples:\n"
+      "  simcap stress stress/cameras.yaml -o out/stress-cameras\n"
+      "  simcap stress stress/occlusion.yaml -o out/stress-occlusion\n"
+      "  simcap stress stress/silhouettes.yaml -o out/stress-silhouettes");
+  cmd->callback([&action] { action = [] { return run_stress(args); }; });
 }
 
 }  // namespace simcap::cli

@@ -1,12 +1,69 @@
-#include "apps/simcap/commands_pending.h"
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+
+#include "apps/simcap/commands.h"
+#include "apps/simcap/fail_above.h"
+#include "validate/summary_text.h"
+#include "validate/validate_job.h"
 
 namespace simcap::cli {
+namespace {
+
+struct ValidateArgs {
+  std::filesystem::path dataset, track, out;
+  std::optional<double> fail_above_mm;
+  bool no_media = false;
+  ValidateOptions options;
+};
+
+int run_validate(const ValidateArgs& args) {
+  ValidateOptions options = args.options;
+  options.media = !args.no_media;
+  const ValidateSummary s = validate_dataset(args.dataset, args.track, args.out, options);
+  std::printf("simcap validate: %s against %s\n%s", args.track.string().c_str(),
+              args.dataset.string().c_str(), metrics_summary_text(s.evaluation).c_str());
+  std::printf("report: %s\nmetrics: %s\n", s.report_html.string().c_str(),
+              s.metrics_json.string().c_str());
+  return fail_above_status("validate", s.evaluation.mpjpe_mm, args.fail_above_mm);
+}
+
+}  // namespace
 
 void add_validate(CLI::App& app, Action& action) {
-  add_pending(
-      app, action, "validate",
-      "Score a tracker's output against a dataset's ground truth (metrics.json + report.html)",
-      "#6", "simcap validate out/studio4 out/track -o out/report --fail-above 40");
+  auto* cmd = app.add_subcommand(
+      "validate",
+      "Score a tracker's output against a dataset's ground truth (metrics.json + report.html)");
+  static ValidateArgs args;
+  cmd->add_option("dataset", args.dataset, "Dataset folder written by simcap render")->required();
+  cmd->add_option("track", args.track, "Track folder written by simcap track (joints3d.csv)")
+      ->required();
+  cmd->add_option("-o,--output", args.out, "Report folder (metrics.json, report.html, MP4)")
+      ->required();
+  cmd->add_option("--fail-above", args.fail_above_mm,
+                  "Exit with status 4 when the MPJPE is above this many mm (for CI)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--failure-threshold", args.options.failure_threshold_mm,
+                  "A frame whose MPJPE is above this (mm) counts as a tracking failure")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--overlay-frames", args.options.overlay_frames,
+                  "Frames drawn over every camera in the report (the worst one among them)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 50));
+  cmd->add_option("--video-camera", args.options.video_camera,
+                  "Camera of the overlay video (default: the first camera)");
+  cmd->add_option("--video-frames", args.options.video_max_frames,
+                  "At most this many frames in the overlay video")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100000));
+  cmd->add_flag("--no-media", args.no_media,
+                "Metrics only: no overlay images or video (the RGB frames are not read)");
+  cmd->add_flag("-q,--quiet", args.options.quiet, "No progress on stderr");
+  cmd->footer(
+      "Exit status: 0 ok, 1 bad input, 4 MPJPE above --fail-above.\n"
+      "Example:\n  simcap validate out/studio4 out/track -o out/report --fail-above 40");
+  cmd->callback([&action] { action = [] { return run_validate(args); }; });
 }
 
 }  // namespace simcap::cli

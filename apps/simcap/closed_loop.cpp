@@ -1,0 +1,169 @@
+#include "apps/simcap/closed_loop.h"
+
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+
+#include "core/error.h"
+#include "validate/summary_text.h"
+
+namespace simcap::cli {
+namespace fs = std::filesystem;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void announce(bool quiet, int stage, const char* what) {
+  if (!quiet) std::fprintf(stderr, "[%d/3] %s\n", stage, what);
+}
+
+template <typename T>
+T parse_option(const fs::path& sweep_file, const std::string& name, const std::string& text) {
+  T v{};
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size()) {
+    throw_input_error(sweep_file, 0, "track." + name, "expected a number, got '" + text + "'");
+  }
+  return v;
+}
+
+}  // namespace
+
+LoopResult run_closed_loop(const LoopRun& run, const fs::path& out) {
+  LoopResult r;
+  r.scene = run.scene;
+  r.out = out;
+  RenderOptions render = run.render;
+  render.overwrite = !render.resume;
+  render.quiet = run.quiet;
+  TrackOptions track = run.track;
+  track.quiet = run.quiet;
+  ValidateOptions validate = run.validate;
+  validate.quiet = run.quiet;
+
+  auto t = std::chrono::steady_clock::now();
+  if (run.existing_dataset.empty()) {
+    announce(run.quiet, 1, "render");
+    r.dataset = out / "dataset";
+    r.render = render_dataset(run.scene, r.dataset, render);
+    r.render_s = seconds_since(t);
+  } else {
+    announce(run.quiet, 1, ("render: reusing " + run.existing_dataset.string()).c_str());
+    r.dataset = run.existing_dataset;
+  }
+
+  announce(run.quiet, 2,
+           ("track (" + track.method + ", silhouettes " + track.silhouettes + ", init " +
+            track.init + ")")
+               .c_str());
+  t = std::chrono::steady_clock::now();
+  r.track = track_dataset(r.dataset, out / "track", track);
+  r.track_s = seconds_since(t);
+
+  announce(run.quiet, 3, "validate");
+  t = std::chrono::steady_clock::now();
+  r.validate = validate_dataset(r.dataset, out / "track", out / "report", validate);
+  r.validate_s = seconds_since(t);
+  return r;
+}
+
+std::string loop_summary_text(const LoopResult& r) {
+  char buf[512];
+  std::string s;
+  std::snprintf(buf, sizeof buf, "simcap loop: %s -> %s\n", r.scene.string().c_str(),
+                r.out.string().c_str());
+  s += buf;
+  std::snprintf(buf, sizeof buf, "  %-10s %9s  %s\n", "stage", "time", "throughput");
+  s += buf;
+  if (r.render.frames > 0) {
+    std::snprintf(buf, sizeof buf, "  %-10s %7.1f s  %.1f frames/s (%d frames x %d cameras)\n",
+                  "render", r.render_s, r.render.frames / r.render_s, r.render.frames,
+                  r.render.cameras);
+  } else {
+    std::snprintf(buf, sizeof buf, "  %-10s %9s  reused %s\n", "render", "-",
+                  r.dataset.string().c_str());
+  }
+  s += buf;
+  std::snprintf(buf, sizeof buf, "  %-10s %7.1f s  %.1f frames/s (%d re-initializations)\n",
+                "track", r.track_s, r.track.frames / r.track_s, r.track.reinitializations);
+  s += buf;
+  std::snprintf(buf, sizeof buf, "  %-10s %7.1f s\n", "validate", r.validate_s);
+  s += buf;
+  s += "metrics:\n" + metrics_summary_text(r.validate.evaluation);
+  s += "report: " + r.validate.report_html.string() + "\n";
+  return s;
+}
+
+void add_loop_options(CLI::App* cmd, LoopRun& run, LoopCliOptions& cli) {
+  cmd->add_option("--frames", run.render.frames,
+                  "Frames to render and track (unset: the whole motion)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--motion", run.render.motion_override,
+                  "BVH file that replaces the first actor's motion")
+      ->check(CLI::ExistingFile);
+  cli.seed_option =
+      cmd->add_option("--seed", cli.seed, "Render seed (default: the scene's render.seed)");
+  cmd->add_option("--set", run.render.overrides,
+                  "Scene override key.path=value, repeatable (e.g. --set rig.count=6)");
+  cmd->add_flag("--resume", run.render.resume,
+                "Keep the frames an interrupted run already rendered in OUT/dataset");
+  cmd->add_option("--method", run.track.method, "Tracker")->capture_default_str();
+  cmd->add_option("--silhouettes", run.track.silhouettes,
+                  "Silhouettes the tracker uses: gt (rendered masks), bgsub, mog2")
+      ->capture_default_str();
+  cmd->add_option("--init", run.track.init, "Tracker initialization: gt or auto")
+      ->capture_default_str();
+  cmd->add_option("--voxel", run.track.voxel_m, "Visual hull voxel size, metres")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--failure-threshold", run.validate.failure_threshold_mm,
+                  "A frame whose MPJPE is above this (mm) counts as a tracking failure")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--no-media", cli.no_media, "No overlay images or video in the report");
+  cmd->add_option("--fail-above", cli.fail_above_mm,
+                  "Exit with status 4 when the MPJPE is above this many mm (for CI)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("-q,--quiet", run.quiet, "No progress on stderr");
+}
+
+void finish_loop_options(LoopRun& run, const LoopCliOptions& cli) {
+  if (cli.seed_option && cli.seed_option->count() > 0) run.render.seed = cli.seed;
+  run.validate.media = !cli.no_media;
+}
+
+LoopRun loop_run_of(const LoopConfig& c, const fs::path& sweep_file, bool quiet) {
+  LoopRun run;
+  run.scene = c.scene;
+  run.render.frames = c.frames;
+  run.render.seed = c.seed;
+  run.render.motion_override = c.motion;
+  run.render.overrides = c.scene_overrides;
+  run.validate.failure_threshold_mm = c.failure_threshold_mm;
+  run.quiet = quiet;
+  for (const auto& [name, value] : c.track_options) {
+    if (name == "method") {
+      run.track.method = value;
+    } else if (name == "silhouettes") {
+      run.track.silhouettes = value;
+    } else if (name == "init") {
+      run.track.init = value;
+    } else if (name == "voxel_m") {
+      run.track.voxel_m = parse_option<double>(sweep_file, name, value);
+    } else if (name == "sik_noise_m") {
+      run.track.sik_noise_m = parse_option<double>(sweep_file, name, value);
+    } else if (name == "seed") {
+      run.track.seed = parse_option<std::uint64_t>(sweep_file, name, value);
+    } else {
+      throw_input_error(sweep_file, 0, "track." + name,
+                        "unknown tracker option; expected method, silhouettes, init, voxel_m, "
+                        "sik_noise_m or seed");
+    }
+  }
+  return run;
+}
+
+}  // namespace simcap::cli

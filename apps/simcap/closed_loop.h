@@ -1,0 +1,61 @@
+// The closed loop render -> track -> validate, composed here in apps/ (the libraries do not call
+// each other) and shared by `simcap loop`, `simcap demo` and `simcap stress`.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "sim/render_job.h"
+#include "tracker/track_job.h"
+#include "validate/sweep_spec.h"
+#include "validate/validate_job.h"
+
+namespace simcap::cli {
+
+struct LoopRun {
+  std::filesystem::path scene;
+  RenderOptions render;
+  TrackOptions track;
+  ValidateOptions validate;
+  bool quiet = false;
+  // When set, this dataset is tracked and validated as it is and nothing is rendered (a sweep
+  // renders a scene once for all the tracker settings it compares).
+  std::filesystem::path existing_dataset;
+};
+
+struct LoopResult {
+  std::filesystem::path scene, out, dataset;
+  RenderSummary render;  // frames = 0 when the dataset was not rendered by this run
+  TrackSummary track;
+  ValidateSummary validate;
+  double render_s = 0, track_s = 0, validate_s = 0;
+};
+
+// Renders into OUT/dataset (replacing a dataset a previous run left there, unless
+// run.render.resume; skipped for run.existing_dataset), tracks into OUT/track and validates into
+// OUT/report, announcing each stage on stderr before its progress line.
+LoopResult run_closed_loop(const LoopRun& run, const std::filesystem::path& out);
+
+// The stage table (time, rate) and the headline metrics, then the report's path.
+std::string loop_summary_text(const LoopResult& result);
+
+// The options of `loop` that `demo` shares: render (--frames, --motion, --seed, --set, --resume),
+// track (--method, --silhouettes, --init, --voxel) and validate (--failure-threshold,
+// --no-media), plus --quiet. `seed` receives --seed; copy it into run.render.seed when given.
+struct LoopCliOptions {
+  std::uint64_t seed = 0;
+  CLI::Option* seed_option = nullptr;
+  bool no_media = false;
+  std::optional<double> fail_above_mm;
+};
+void add_loop_options(CLI::App* cmd, LoopRun& run, LoopCliOptions& cli);
+// Applies the parsed LoopCliOptions to `run`.
+void finish_loop_options(LoopRun& run, const LoopCliOptions& cli);
+
+// The closed loop of one sweep point; an unknown tracker option or a bad value is an Error
+// naming `sweep_file` and the option.
+LoopRun loop_run_of(const LoopConfig& config, const std::filesystem::path& sweep_file, bool quiet);
+
+}  // namespace simcap::cli

@@ -1,0 +1,194 @@
+// Sweep files: parsing, expansion into points, bad files, and the tables and plot written for a
+// sweep run through a stand-in closed loop (so that the test needs neither renderer nor tracker).
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <pugixml.hpp>
+
+#include "core/atomic_file.h"
+#include "core/csv.h"
+#include "core/error.h"
+#include "models/humanoid.h"
+#include "tests/support/temp_dir.h"
+#include "validate/sweep.h"
+
+namespace simcap {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::TempDir;
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "<no error>";
+}
+
+// A sweep file next to an (empty) scene file, which is all that load_sweep looks at.
+fs::path write_sweep(const TempDir& dir, const std::string& text) {
+  write_text_atomic(dir / "scenes" / "room.yaml", "# a scene\n");
+  write_text_atomic(dir / "scenes" / "other.yaml", "# another scene\n");
+  write_text_atomic(dir / "stress" / "sweep.yaml", text);
+  return dir / "stress" / "sweep.yaml";
+}
+
+const char* kTwoAxes = R"(title: Test sweep
+scene: ../scenes/room.yaml
+frames: 30
+seed: 7
+set:
+  room.size: [6, 3, 6]
+  rig.type: ring
+track: {method: moschini, init: gt}
+vary:
+  - name: cameras
+    parameter: rig.count
+    values: [2, 4]
+  - name: masks
+    cases:
+      - {label: exact, track.silhouettes: gt}
+      - {track.silhouettes: bgsub, noise.rgb_sigma: 8}
+)";
+
+TEST(Sweep, ExpandsEveryCombination) {
+  TempDir dir;
+  const SweepSpec spec = load_sweep(write_sweep(dir, kTwoAxes));
+  EXPECT_EQ(spec.title, "Test sweep");
+  ASSERT_EQ(spec.axes.size(), 2u);
+  EXPECT_TRUE(spec.axes[0].numeric());
+  EXPECT_FALSE(spec.axes[1].numeric());
+  EXPECT_EQ(spec.axes[1].labels[1], "track.silhouettes=bgsub noise.rgb_sigma=8");
+  const auto points = sweep_points(spec);
+  ASSERT_EQ(points.size(), 4u);
+  EXPECT_EQ(points[1].labels,
+            (std::vector<std::string>{"2", "track.silhouettes=bgsub noise.rgb_sigma=8"}));
+  const LoopConfig& c = points[1].config;
+  EXPECT_EQ(c.scene, (dir / "scenes" / "room.yaml").lexically_normal());
+  EXPECT_EQ(c.frames, 30);
+  EXPECT_EQ(c.seed, 7u);
+  EXPECT_EQ(c.scene_overrides, (std::vector<std::string>{"room.size=[6, 3, 6]", "rig.type=ring",
+                                                         "rig.count=2", "noise.rgb_sigma=8"}));
+  using Option = std::pair<std::string, std::string>;
+  EXPECT_EQ(
+      c.track_options,
+      (std::vector<Option>{{"method", "moschini"}, {"init", "gt"}, {"silhouettes", "bgsub"}}));
+  EXPECT_EQ(points[2].config.scene_overrides[2], "rig.count=4");
+  EXPECT_EQ(sweep_point_folder(3, points[3]), "03_4_track.silhouettes_bgsub_noise.rgb_sigma_8");
+}
+
+TEST(Sweep, SceneCanBeTheVariedParameter) {
+  TempDir dir;
+  const SweepSpec spec = load_sweep(write_sweep(dir, R"(frames: 10
+vary:
+  - name: scene
+    cases:
+      - {label: plain, scene: ../scenes/room.yaml}
+      - {label: other, scene: ../scenes/other.yaml}
+)"));
+  const auto points = sweep_points(spec);
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_EQ(points[1].config.scene.filename(), "other.yaml");
+  EXPECT_EQ(points[1].labels[0], "other");
+}
+
+TEST(Sweep, BadFilesAreNamed) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"scene: ../scenes/room.yaml\nframs: 3\nvary: [{parameter: rig.count, values: [1]}]\n",
+       "sweep.yaml:2: frams: unknown key"},
+      {"scene: ../scenes/room.yaml\nframes: 0\nvary: [{parameter: rig.count, values: [1]}]\n",
+       "sweep.yaml:2: frames: expected a positive integer"},
+      {"scene: ../scenes/nope.yaml\nvary: [{parameter: rig.count, values: [1]}]\n",
+       "sweep.yaml:1: scene: no such file"},
+      {"scene: ../scenes/room.yaml\n", "sweep.yaml: vary: missing"},
+      {"frames: 3\nvary: [{parameter: rig.count, values: [1]}]\n", "sweep.yaml: scene: missing"},
+      {"scene: ../scenes/room.yaml\nvary:\n  - parameter: rig.count\n    cases: []\n",
+       "sweep.yaml:3: vary: expected either parameter and values, or cases"},
+      {"scene: ../scenes/room.yaml\nvary:\n  - parameter: frames\n    values: [10, x]\n",
+       "sweep.yaml:4: frames: expected a positive integer"},
+      {"scene: ../scenes/room.yaml\nvary:\n  - cases:\n    - {label: a}\n",
+       "sweep.yaml:4: cases: a case sets nothing"},
+      {"scene: ../scenes/room.yaml\nvary:\n  - parameter: set\n    values: [1]\n",
+       "sweep.yaml:4: set: cannot be varied"},
+      {"scene: [unclosed\n", "sweep.yaml:"},
+  };
+  for (const auto& [text, expected] : cases) {
+    TempDir dir;
+    const std::string e = error_of([&] { load_sweep(write_sweep(dir, text)); });
+    EXPECT_NE(e.find(expected), std::string::npos) << text << "\n-> " << e;
+  }
+  TempDir dir;
+  EXPECT_NE(error_of([&] { load_sweep(dir / "none.yaml"); }).find("none.yaml: no such sweep file"),
+            std::string::npos);
+}
+
+TEST(Sweep, ShippedSweepsLoad) {
+  for (const char* name : {"cameras.yaml", "occlusion.yaml", "silhouettes.yaml"}) {
+    const SweepSpec spec = load_sweep(fs::path(SIMCAP_SOURCE_DIR) / "stress" / name);
+    EXPECT_GE(sweep_points(spec).size(), 2u) << name;
+  }
+  const auto cameras =
+      sweep_points(load_sweep(fs::path(SIMCAP_SOURCE_DIR) / "stress" / "cameras.yaml"));
+  ASSERT_EQ(cameras.size(), 5u);
+  EXPECT_EQ(cameras[4].config.scene_overrides.back(), "rig.count=8");
+}
+
+// A stand-in loop: every joint is 90/count mm off along x; the count 3 point fails.
+SweepOutcome fake_loop(const SweepPoint& point, const fs::path& dir) {
+  const double count = std::stod(point.labels[0]);
+  if (count == 3) throw Error("tracker: too few cameras, see log");
+  EvaluationInput in;
+  in.joints = he15_joints();
+  Eigen::Matrix3Xd truth = Eigen::Matrix3Xd::Random(3, 15);
+  in.frames = {0, 1};
+  in.truth = {truth, truth};
+  const Eigen::Matrix3Xd est = truth.colwise() + Eigen::Vector3d(0.09 / count, 0, 0);
+  in.estimate = {est, est};
+  SweepOutcome o;
+  o.evaluation = evaluate(in);
+  o.report = dir / "report" / "report.html";
+  o.render_s = 1.5;
+  return o;
+}
+
+TEST(Sweep, RunWritesTablesAndPlot) {
+  TempDir dir;
+  const SweepSpec spec = load_sweep(write_sweep(dir, R"(title: Cameras
+scene: ../scenes/room.yaml
+vary:
+  - {name: cameras, parameter: rig.count, values: [2, 3, 4]}
+)"));
+  const auto outcomes = run_sweep(spec, dir / "out", fake_loop, true);
+  ASSERT_EQ(outcomes.size(), 3u);
+  EXPECT_FALSE(outcomes[1].evaluation);
+
+  CsvReader csv(
+      dir / "out" / "table.csv",
+      {"point", "cameras", "status", "frames", "mpjpe_mm", "pa_mpjpe_mm", "pck_50mm", "pck_100mm",
+       "pck_150mm", "rmse_mean_mm", "wrists_elbows_mm", "failed_fraction", "report"});
+  ASSERT_TRUE(csv.next());
+  EXPECT_EQ(csv.text(1), "2");
+  EXPECT_EQ(csv.text(2), "ok");
+  EXPECT_NEAR(csv.number(4), 45.0, 0.01);
+  EXPECT_NEAR(csv.number(6), 1.0, 1e-9);
+  EXPECT_EQ(csv.text(12), "points/00_2/report/report.html");
+  ASSERT_TRUE(csv.next());
+  EXPECT_EQ(csv.text(2), "error: tracker: too few cameras; see log");
+  ASSERT_TRUE(csv.next());
+  EXPECT_NEAR(csv.number(4), 22.5, 0.01);
+  EXPECT_FALSE(csv.next());
+
+  pugi::xml_document svg;
+  ASSERT_TRUE(svg.load_file((dir / "out" / "mpjpe.svg").c_str()));
+  EXPECT_STREQ(svg.first_child().name(), "svg");
+  const std::string html = read_text(dir / "out" / "table.html");
+  EXPECT_NE(html.find("<h1>Cameras</h1>"), std::string::npos);
+  EXPECT_NE(html.find("href=\"points/02_4/report/report.html\""), std::string::npos);
+  EXPECT_NE(html.find("failed: tracker: too few cameras, see log"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir / "out" / "timings.csv"));
+}
+
+}  // namespace
+}  // namespace simcap

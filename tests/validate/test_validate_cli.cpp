@@ -1,0 +1,143 @@
+// The validate, loop, demo and stress commands through the simcap program: exit statuses,
+// --fail-above, messages naming bad inputs, and small closed loops and sweeps end to end.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "core/csv.h"
+#include "tests/support/temp_dir.h"
+#include "tests/validate/synthetic_dataset.h"
+
+namespace simcap {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::run_simcap;
+using testing::TempDir;
+
+// Small images keep the closed-loop tests to a few seconds.
+const std::string kSmall = " --set rig.resolution=[160,120] -q ";
+
+std::string quoted(const fs::path& p) {
+  return "'" + p.string() + "'";
+}
+
+TEST(ValidateCli, FailAboveSetsTheExitStatus) {
+  TempDir dir;
+  const auto d = testing::write_synthetic_dataset(dir / "data");
+  testing::write_track(dir / "track", d.truth,
+                       [](int, const std::string&, const Eigen::Vector3d& p) {
+                         return Eigen::Vector3d(p + Eigen::Vector3d(0.03, 0.04, 0));
+                       });
+  const std::string args = "validate " + quoted(dir / "data") + " " + quoted(dir / "track") +
+                           " -o " + quoted(dir / "report") + " -q --no-media";
+  std::string out;
+  EXPECT_EQ(run_simcap(args + " --fail-above 40", &out), 4) << out;
+  EXPECT_NE(out.find("FAILED: MPJPE 50.0 mm is above --fail-above 40.0 mm"), std::string::npos)
+      << out;
+  EXPECT_EQ(run_simcap(args + " --fail-above 60", &out), 0) << out;
+  EXPECT_NE(out.find("MPJPE"), std::string::npos);
+  EXPECT_NE(out.find("report.html"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir / "report" / "metrics.json"));
+}
+
+TEST(ValidateCli, BadInputExitsOneNamingTheFile) {
+  TempDir dir;
+  testing::write_synthetic_dataset(dir / "data");
+  fs::create_directories(dir / "track");
+  std::string out;
+  EXPECT_EQ(run_simcap("validate " + quoted(dir / "data") + " " + quoted(dir / "track") + " -o " +
+                           quoted(dir / "report"),
+                       &out),
+            1);
+  EXPECT_NE(out.find("simcap: error: "), std::string::npos) << out;
+  EXPECT_NE(out.find("track/joints3d.csv: missing"), std::string::npos) << out;
+  EXPECT_FALSE(fs::exists(dir / "report"));
+}
+
+TEST(ValidateCli, BadSweepFileExitsOne) {
+  TempDir dir;
+  write_text_atomic(dir / "sweep.yaml", "scene: nowhere.yaml\nvary: []\n");
+  std::string out;
+  EXPECT_EQ(run_simcap("stress " + quoted(dir / "sweep.yaml") + " -o " + quoted(dir / "out"), &out),
+            1);
+  EXPECT_NE(out.find("sweep.yaml:1: scene: no such file"), std::string::npos) << out;
+
+  // An override the scene loader rejects stops the sweep before anything runs.
+  write_text_atomic(dir / "sweep.yaml",
+                    "scene: " + (fs::path(SIMCAP_SOURCE_DIR) / "scenes" / "studio8.yaml").string() +
+                        "\nframes: 2\nvary: [{parameter: rig.cuont, values: [2]}]\n");
+  EXPECT_EQ(run_simcap("stress " + quoted(dir / "sweep.yaml") + " -o " + quoted(dir / "out"), &out),
+            1);
+  EXPECT_NE(out.find("cuont"), std::string::npos) << out;
+  EXPECT_FALSE(fs::exists(dir / "out" / "table.csv"));
+
+  write_text_atomic(dir / "sweep.yaml",
+                    "scene: " + (fs::path(SIMCAP_SOURCE_DIR) / "scenes" / "studio8.yaml").string() +
+                        "\nframes: 2\nvary: [{parameter: track.colour, values: [red]}]\n");
+  EXPECT_EQ(run_simcap("stress " + quoted(dir / "sweep.yaml") + " -o " + quoted(dir / "out"), &out),
+            1);
+  EXPECT_NE(out.find("track.colour: unknown tracker option"), std::string::npos) << out;
+}
+
+TEST(LoopCli, RendersTracksAndValidates) {
+  TempDir dir;
+  std::string out;
+  const fs::path scene = fs::path(SIMCAP_SOURCE_DIR) / "scenes" / "studio4.yaml";
+  ASSERT_EQ(run_simcap("loop " + quoted(scene) + " -o " + quoted(dir / "loop") +
+                           " --frames 4 --no-media" + kSmall,
+                       &out),
+            0)
+      << out;
+  for (const char* word : {"render", "track", "validate", "MPJPE", "report.html"}) {
+    EXPECT_NE(out.find(word), std::string::npos) << word << "\n" << out;
+  }
+  const auto json = nlohmann::json::parse(read_text(dir / "loop" / "report" / "metrics.json"));
+  EXPECT_EQ(json["frame_count"], 4);
+  EXPECT_TRUE(json["mpjpe_mm"].is_number());
+  // A second run replaces the first one's dataset.
+  EXPECT_EQ(run_simcap("loop " + quoted(scene) + " -o " + quoted(dir / "loop") +
+                           " --frames 3 --no-media" + kSmall,
+                       &out),
+            0)
+      << out;
+  EXPECT_EQ(
+      nlohmann::json::parse(read_text(dir / "loop" / "report" / "metrics.json"))["frame_count"], 3);
+}
+
+TEST(StressCli, SweepWritesOneRowPerPoint) {
+  TempDir dir;
+  write_text_atomic(
+      dir / "sweep.yaml",
+      "title: tiny\nscene: " + (fs::path(SIMCAP_SOURCE_DIR) / "scenes" / "studio8.yaml").string() +
+          "\nframes: 3\nset: {rig.resolution: [160, 120]}\n"
+          "vary:\n  - {name: cameras, parameter: rig.count, values: [3, 4]}\n"
+          "  - name: masks\n    cases:\n      - {label: gt, track.silhouettes: gt}\n"
+          "      - {label: bgsub, track.silhouettes: bgsub}\n");
+  std::string out;
+  ASSERT_EQ(
+      run_simcap("stress " + quoted(dir / "sweep.yaml") + " -o " + quoted(dir / "out") + " -q",
+                 &out),
+      0)
+      << out;
+  CsvReader csv(
+      dir / "out" / "table.csv",
+      {"point", "cameras", "masks", "status", "frames", "mpjpe_mm", "pa_mpjpe_mm", "pck_50mm",
+       "pck_100mm", "pck_150mm", "rmse_mean_mm", "wrists_elbows_mm", "failed_fraction", "report"});
+  int rows = 0;
+  while (csv.next()) {
+    EXPECT_EQ(csv.text(3), "ok") << csv.text(3);
+    EXPECT_TRUE(fs::exists(dir / "out" / csv.text(13)));
+    ++rows;
+  }
+  EXPECT_EQ(rows, 4);
+  EXPECT_TRUE(fs::exists(dir / "out" / "mpjpe.svg"));
+  EXPECT_TRUE(fs::exists(dir / "out" / "table.html"));
+  // Datasets are removed unless --keep-datasets; the two tracker settings shared one render.
+  EXPECT_FALSE(fs::exists(dir / "out" / "points" / "00_3_gt" / "dataset"));
+  EXPECT_NE(out.find("tiny"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace simcap

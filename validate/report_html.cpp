@@ -1,0 +1,194 @@
+#include "validate/report_html.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "validate/svg_plot.h"
+
+namespace simcap {
+
+namespace {
+
+std::string fmt(const char* format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+std::string row(const std::vector<std::string>& cells, const char* tag = "td") {
+  std::string s = "<tr>";
+  for (const auto& c : cells) s += std::string("<") + tag + ">" + c + "</" + tag + ">";
+  return s + "</tr>\n";
+}
+
+std::string summary_table(const Evaluation& ev) {
+  std::string s = "<table>\n";
+  s += row({"Frames", std::to_string(ev.frames.size()) + " (" + std::to_string(ev.frames.front()) +
+                          " to " + std::to_string(ev.frames.back()) + ")"});
+  s += row({"Joints", std::to_string(ev.joints.size())});
+  s += row({"<b>MPJPE</b>", "<b>" + fmt("%.1f", ev.mpjpe_mm) + " mm</b>"});
+  s += row({"PA-MPJPE (similarity-aligned per frame)", fmt("%.1f", ev.pa_mpjpe_mm) + " mm"});
+  for (const auto& p : ev.pck) {
+    s +=
+        row({"PCK @ " + fmt("%.0f", p.threshold_mm) + " mm", fmt("%.1f", 100 * p.fraction) + " %"});
+  }
+  s += row({"Per-point RMSE, mean over joints (Moschini Table 7.2; HumanEva, 3 cameras: 35.5 mm)",
+            fmt("%.1f", ev.rmse_mean_mm) + " mm"});
+  s +=
+      row({"Mean error over wrists and elbows (Balan; G&oacute;mez J&aacute;uregui, monocular: "
+           "80&ndash;120 mm)",
+           fmt("%.1f", ev.wrists_elbows_mm) + " mm"});
+  if (!ev.angles.empty()) {
+    s += row({"Joint-angle RMSE, mean over " + std::to_string(ev.angles.size()) + " joints",
+              fmt("%.3f", ev.angle_rmse_mean_rad) + " rad"});
+  }
+  const FailureSummary& f = ev.failures;
+  s += row({"Failed frames (MPJPE &gt; " + fmt("%.0f", f.threshold_mm) + " mm)",
+            std::to_string(f.failed_frames) + " (" + fmt("%.1f", 100 * f.failed_fraction) +
+                " %) in " + std::to_string(f.episodes.size()) + " episodes"});
+  s += row({"Time to recover (frames; mean / max over recovered episodes)",
+            fmt("%.1f", f.mean_recovery_frames) + " / " + std::to_string(f.max_recovery_frames)});
+  return s + "</table>\n";
+}
+
+std::string per_frame_plot(const Evaluation& ev) {
+  LinePlot plot;
+  plot.title = "Error per frame";
+  plot.x_label = "frame";
+  plot.y_label = "mm";
+  PlotSeries mpjpe{"MPJPE", {}, {}}, pa{"PA-MPJPE", {}, {}};
+  for (const auto& f : ev.per_frame) {
+    mpjpe.x.push_back(f.frame);
+    mpjpe.y.push_back(f.mpjpe_mm);
+    pa.x.push_back(f.frame);
+    pa.y.push_back(f.pa_mpjpe_mm);
+  }
+  plot.series = {mpjpe, pa};
+  plot.reference_y = ev.failures.threshold_mm;
+  plot.reference_label = "failure threshold";
+  return line_plot_svg(plot);
+}
+
+std::string per_joint_section(const Evaluation& ev) {
+  BarChart chart;
+  chart.title = "MPJPE per joint";
+  chart.value_label = "mm";
+  for (const auto& j : ev.per_joint) {
+    chart.labels.push_back(j.joint);
+    chart.values.push_back(j.mpjpe_mm);
+  }
+  std::string s = bar_chart_svg(chart);
+  s += "<table>\n" + row({"joint", "MPJPE mm", "PA-MPJPE mm", "RMSE mm", "max mm"}, "th");
+  for (const auto& j : ev.per_joint) {
+    s += row({j.joint, fmt("%.1f", j.mpjpe_mm), fmt("%.1f", j.pa_mpjpe_mm), fmt("%.1f", j.rmse_mm),
+              fmt("%.1f", j.max_mm)});
+  }
+  return s + "</table>\n";
+}
+
+std::string visibility_chart(const std::string& title, const std::vector<VisibilityGroup>& groups) {
+  BarChart chart;
+  chart.title = title;
+  chart.value_label = "MPJPE, mm";
+  for (const auto& g : groups) {
+    chart.labels.push_back(g.label);
+    chart.values.push_back(g.count > 0 ? g.mpjpe_mm : std::nan(""));
+    chart.annotations.push_back("(" + std::to_string(g.count) + " joint-frames)");
+  }
+  return bar_chart_svg(chart);
+}
+
+std::string angles_section(const Evaluation& ev) {
+  std::string s =
+      "<h2>Joint angles</h2>\n<p>Angle of the rotation between the true and tracked "
+      "local joint rotations, arccos((tr(R<sub>1</sub>R<sub>2</sub><sup>T</sup>) "
+      "&minus; 1)/2) (Moschini eq. 7.1), over frames.</p>\n<table>\n";
+  s += row({"joint", "RMSE rad", "mean rad", "max rad"}, "th");
+  for (const auto& a : ev.angles) {
+    s += row({a.joint, fmt("%.3f", a.rmse_rad), fmt("%.3f", a.mean_rad), fmt("%.3f", a.max_rad)});
+  }
+  return s + "</table>\n";
+}
+
+std::string failures_section(const Evaluation& ev) {
+  const FailureSummary& f = ev.failures;
+  std::string s = "<h2>Tracking failures</h2>\n<p>A frame fails when its MPJPE is above " +
+                  fmt("%.0f", f.threshold_mm) +
+                  " mm; the time to recover is the number of frames until it is back below.</p>\n";
+  if (f.episodes.empty()) return s + "<p>No failures.</p>\n";
+  s += "<table>\n" + row({"first frame", "frames", "recovered"}, "th");
+  for (const auto& e : f.episodes) {
+    s += row({std::to_string(e.first_frame), std::to_string(e.frames), e.recovered ? "yes" : "no"});
+  }
+  return s + "</table>\n";
+}
+
+std::string media_section(const ReportContent& c) {
+  std::string s =
+      "<h2>Overlays</h2>\n<p>True skeleton in green, tracked skeleton in red, projected "
+      "with the dataset's calibration.</p>\n";
+  int last_frame = -1;
+  for (const auto& o : c.overlays) {
+    if (o.frame != last_frame) {
+      if (last_frame >= 0) s += "</div>\n";
+      s += "<h3>Frame " + std::to_string(o.frame) + " (" + xml_escape(o.reason) +
+           ")</h3>\n<div class=\"grid\">\n";
+      last_frame = o.frame;
+    }
+    s += "<figure><img alt=\"" + xml_escape(o.camera) + "\" src=\"data:image/jpeg;base64," +
+         base64_encode(o.jpeg) + "\"><figcaption>" + xml_escape(o.camera) +
+         "</figcaption></figure>\n";
+  }
+  if (last_frame >= 0) s += "</div>\n";
+  if (c.overlays.empty()) s += "<p>No overlay images were made.</p>\n";
+  s += "<h2>Video</h2>\n";
+  if (!c.video_file.empty()) {
+    s += "<video controls src=\"" + xml_escape(c.video_file) + "\"></video>\n";
+  }
+  return s + "<p>" + xml_escape(c.video_note) + "</p>\n";
+}
+
+}  // namespace
+
+std::string base64_encode(const std::vector<unsigned char>& bytes) {
+  static constexpr char kAlphabet[] =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    const size_t n = std::min<size_t>(3, bytes.size() - i);
+    unsigned v = static_cast<unsigned>(bytes[i]) << 16;
+    if (n > 1) v |= static_cast<unsigned>(bytes[i + 1]) << 8;
+    if (n > 2) v |= bytes[i + 2];
+    for (size_t k = 0; k < 4; ++k) {
+      out += k <= n ? kAlphabet[(v >> (18 - 6 * k)) & 63] : '=';
+    }
+  }
+  return out;
+}
+
+std::string report_html(const Evaluation& ev, const ReportContent& c) {
+  std::string s =
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+      "<title>simcap validation report</title>\n<style>\n"
+      "body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}\n"
+      "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:3px 8px;"
+      "text-align:left}\n.grid{display:flex;flex-wrap:wrap;gap:8px}figure{margin:0}"
+      "figure img{width:340px}video{max-width:100%}\n</style>\n</head>\n<body>\n"
+      "<h1>simcap validation report</h1>\n<p>Dataset: <code>" +
+      xml_escape(c.dataset) + "</code><br>Track: <code>" + xml_escape(c.track) +
+      "</code></p>\n<h2>Summary</h2>\n" + summary_table(ev) + "<h2>Error over time</h2>\n" +
+      per_frame_plot(ev) + "<h2>Error per joint</h2>\n" + per_joint_section(ev);
+  if (!ev.by_visible_cameras.empty()) {
+    s += "<h2>Error against visibility</h2>\n<p>Each joint in each frame is grouped by the number "
+         "of cameras that see it and by its worst occlusion over the cameras (from "
+         "gt/joints2d.csv).</p>\n" +
+         visibility_chart("MPJPE by cameras seeing the joint", ev.by_visible_cameras) +
+         visibility_chart("MPJPE by occlusion", ev.by_occlusion);
+  }
+  if (!ev.angles.empty()) s += angles_section(ev);
+  s += failures_section(ev) + media_section(c) + "</body>\n</html>\n";
+  return s;
+}
+
+}  // namespace simcap

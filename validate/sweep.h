@@ -1,0 +1,42 @@
+// Runs a stress sweep point by point through a caller-supplied closed loop and publishes the
+// results: OUT/table.csv (deterministic), OUT/table.html with the plot, OUT/mpjpe.svg (MPJPE
+// against the first varied parameter) and OUT/timings.csv (seconds per stage).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "validate/evaluation.h"
+#include "validate/sweep_spec.h"
+
+namespace simcap {
+
+struct SweepOutcome {
+  std::optional<Evaluation> evaluation;  // empty when the point failed
+  std::string error;                     // why it failed
+  std::filesystem::path report;          // the point's report.html
+  double render_s = 0, track_s = 0, validate_s = 0;
+};
+
+// Renders, tracks and validates one point into `point_dir`. A simcap::Error it throws marks the
+// point failed (the sweep goes on); other exceptions end the sweep.
+using SweepPointRunner =
+    std::function<SweepOutcome(const SweepPoint& point, const std::filesystem::path& point_dir)>;
+
+// Runs every point of `spec` into OUT/points/<nn>_<labels>/, rewriting the tables after each
+// point so that an interrupted sweep still leaves the finished rows. Progress on stderr.
+std::vector<SweepOutcome> run_sweep(const SweepSpec& spec, const std::filesystem::path& out,
+                                    const SweepPointRunner& run, bool quiet);
+
+// The tables and plot for the first `outcomes.size()` points.
+void write_sweep_tables(const SweepSpec& spec, const std::vector<SweepPoint>& points,
+                        const std::vector<SweepOutcome>& outcomes,
+                        const std::filesystem::path& out);
+
+// Folder name of point `index`: its number and labels, reduced to [A-Za-z0-9._-].
+std::string sweep_point_folder(size_t index, const SweepPoint& point);
+
+}  // namespace simcap

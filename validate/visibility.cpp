@@ -1,0 +1,100 @@
+#include "validate/visibility.h"
+
+#include <algorithm>
+#include <map>
+
+#include "core/csv.h"
+#include "core/error.h"
+
+namespace simcap {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr VisibilityLabel kLabelled[] = {VisibilityLabel::visible, VisibilityLabel::self_occluded,
+                                         VisibilityLabel::scene_occluded,
+                                         VisibilityLabel::out_of_frame};
+
+int index_of(const std::vector<std::string>& names, const std::string& name) {
+  const auto it = std::find(names.begin(), names.end(), name);
+  return it == names.end() ? -1 : static_cast<int>(it - names.begin());
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+}  // namespace
+
+std::string_view visibility_label_name(VisibilityLabel v) {
+  switch (v) {
+    case VisibilityLabel::visible:
+      return "visible";
+    case VisibilityLabel::self_occluded:
+      return "self_occluded";
+    case VisibilityLabel::scene_occluded:
+      return "scene_occluded";
+    case VisibilityLabel::out_of_frame:
+      return "out_of_frame";
+    case VisibilityLabel::missing:
+      break;
+  }
+  return "missing";
+}
+
+int VisibilityTable::frame_index(int frame) const {
+  const auto it = std::lower_bound(frames.begin(), frames.end(), frame);
+  return it != frames.end() && *it == frame ? static_cast<int>(it - frames.begin()) : -1;
+}
+
+int VisibilityTable::joint_index(const std::string& name) const {
+  return index_of(joints, name);
+}
+
+VisibilityTable read_visibility_table(const fs::path& path,
+                                      const std::vector<std::string>& cameras) {
+  CsvReader csv(path, kJoints2dColumns);
+  VisibilityTable table;
+  table.cameras = cameras;
+  // frame -> (joint, camera) -> label; ordered so that the table comes out with ascending frames.
+  std::map<int, std::map<std::pair<int, int>, VisibilityLabel>> rows;
+  while (csv.next()) {
+    const long frame = csv.integer(0);
+    if (frame < 0) csv.fail(0, "frame numbers start at 0");
+    const int cam = index_of(cameras, csv.text(1));
+    if (cam < 0) {
+      csv.fail(1, "unknown camera '" + csv.text(1) + "'; the calibration has " + joined(cameras));
+    }
+    const std::string& joint = csv.text(2);
+    if (joint.empty()) csv.fail(2, "empty joint name");
+    int j = index_of(table.joints, joint);
+    if (j < 0) {
+      j = static_cast<int>(table.joints.size());
+      table.joints.push_back(joint);
+    }
+    const std::string& label = csv.text(6);
+    const auto* v =
+        std::find_if(std::begin(kLabelled), std::end(kLabelled),
+                     [&](VisibilityLabel x) { return visibility_label_name(x) == label; });
+    if (v == std::end(kLabelled)) {
+      csv.fail(6, "expected visible, self_occluded, scene_occluded or out_of_frame, got '" + label +
+                      "'");
+    }
+    if (!rows[static_cast<int>(frame)].emplace(std::pair{j, cam}, *v).second) {
+      csv.fail(2, "joint '" + joint + "' repeated for camera " + cameras[cam] + " in frame " +
+                      std::to_string(frame));
+    }
+  }
+  for (const auto& [frame, labels] : rows) {
+    table.frames.push_back(frame);
+    auto& s = table.status.emplace_back(
+        table.joints.size(),
+        std::vector<VisibilityLabel>(cameras.size(), VisibilityLabel::missing));
+    for (const auto& [key, v] : labels) s[key.first][key.second] = v;
+  }
+  return table;
+}
+
+}  // namespace simcap
