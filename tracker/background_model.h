@@ -21,7 +21,7 @@ struct BackgroundOptions {
   bool suppress_shadows = true;
   double shadow_min_ratio = 0.4;
   double shadow_max_ratio = 0.95;
-  double shadow_chroma = 4.0;
+  double shadow_chroma = 2.0;
 };
 
 class GaussianBackground {

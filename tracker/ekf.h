@@ -48,7 +48,6 @@ class PoseFilter {
 
   StickPose pose() const { return pose_of(x_); }
   const State& state() const { return x_; }
-  const Covariance& covariance() const { return P_; }
 
   // The torso orientation is R0 = exp([θ0 ω0]x) R_ref. Moschini's axis-angle (ω0, θ0) has a
   // redundant scale and is singular at θ0 = 0 (the upright, +Z-facing pose), so ω0 θ0 is kept

@@ -1,5 +1,6 @@
 #include "tracker/moschini_tracker.h"
 
+#include <array>
 #include <chrono>
 #include <cstdio>
 
@@ -83,26 +84,39 @@ StickPose MoschiniTracker::best_upright(const Observation& obs, const StickPose*
   return best;
 }
 
-void MoschiniTracker::resolve_crossed_legs(const IcpTargets& targets, StickPose& pose) const {
-  const double margin = 0.03;
-  auto crossed = [&](const StickPose& p) {
-    const auto r = model_.reference_points(model_.geometry(p));
-    auto lateral = [&](int i) { return p.R0.col(0).dot(r[i] - p.t0); };
-    return lateral(kLFoot) < lateral(kRFoot) - margin ||
-           lateral(kLKneePoint) < lateral(kRKneePoint) - margin;
+void MoschiniTracker::resolve_crossed_limbs(const IcpTargets& targets, StickPose& pose) const {
+  struct Pair {
+    std::array<int, 2> ends;                  // left distal reference points of the pair
+    std::vector<std::pair<int, int>> angles;  // left/right angles exchanged
   };
-  if (!crossed(pose)) return;
-  StickPose swapped = pose;
-  for (const auto& [l, r] : {std::pair{kLHip1, kRHip1}, std::pair{kLHip2, kRHip2},
-                             std::pair{kLHipTwist, kRHipTwist}, std::pair{kLKnee, kRKnee}}) {
-    if (l >= model_.angle_count()) continue;
-    std::swap(swapped.theta[l], swapped.theta[r]);
-  }
+  const std::array<Pair, 2> pairs = {{
+      {{kLFoot, kLKneePoint},
+       {{kLHip1, kRHip1}, {kLHip2, kRHip2}, {kLHipTwist, kRHipTwist}, {kLKnee, kRKnee}}},
+      {{kLHandTip, kLElbowPoint},
+       {{kLShoulder1, kRShoulder1},
+        {kLShoulder2, kRShoulder2},
+        {kLShoulder3, kRShoulder3},
+        {kLElbow, kRElbow}}},
+  }};
+  const double margin = 0.03;
   const auto& ranges = model_.ranges();
-  for (int k = 0; k < model_.angle_count(); ++k)
-    swapped.theta[k] = limit_angle(swapped.theta[k], ranges[k]);
-  refiner_.refine(targets, swapped);
-  if (refiner_.cost(targets, swapped) < refiner_.cost(targets, pose)) pose = swapped;
+  for (const Pair& pair : pairs) {
+    const auto r = model_.reference_points(model_.geometry(pose));
+    // The right-side reference point always follows its left one in ReferencePoint.
+    auto lateral = [&](int i) { return pose.R0.col(0).dot(r[i] - pose.t0); };
+    const bool crossed = lateral(pair.ends[0]) < lateral(pair.ends[0] + 1) - margin ||
+                         lateral(pair.ends[1]) < lateral(pair.ends[1] + 1) - margin;
+    if (!crossed) continue;
+    StickPose swapped = pose;
+    for (const auto& [left, right] : pair.angles) {
+      if (right >= model_.angle_count()) continue;
+      std::swap(swapped.theta[left], swapped.theta[right]);
+      swapped.theta[left] = limit_angle(swapped.theta[left], ranges[left]);
+      swapped.theta[right] = limit_angle(swapped.theta[right], ranges[right]);
+    }
+    refiner_.refine(targets, swapped);
+    if (refiner_.cost(targets, swapped) < refiner_.cost(targets, pose)) pose = swapped;
+  }
 }
 
 void MoschiniTracker::start_upright(const Observation& obs) {
@@ -123,7 +137,7 @@ TrackStep MoschiniTracker::step(const Observation& obs) {
   if (!obs.points.empty()) {
     const IcpTargets targets = targets_of(obs);
     icp_.fit(targets, measured);
-    resolve_crossed_legs(targets, measured);
+    resolve_crossed_limbs(targets, measured);
     score(measured, obs, &out.icp, &out.outside_fraction);
     const RecoveryOptions& rec = options_.recovery;
     char why[96] = "";

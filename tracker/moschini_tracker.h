@@ -51,7 +51,6 @@ class MoschiniTracker {
   // Starts from the hull of a person standing upright (--init auto): the best of
   // upright_hypotheses() after ICP.
   void start_upright(const Observation& obs);
-  bool started() const { return started_; }
 
   TrackStep step(const Observation& obs);
   int reinitializations() const { return reinitializations_; }
@@ -66,10 +65,11 @@ class MoschiniTracker {
 
  private:
   StickPose best_upright(const Observation& obs, const StickPose* current) const;
-  // When the fitted legs cross (the left foot or knee right of the right one in the torso's
-  // frame), tries them exchanged and keeps whichever the hull and centerline favour: walking
-  // legs pass close by each other, and the centerline points can lead each leg onto the other.
-  void resolve_crossed_legs(const IcpTargets& targets, StickPose& pose) const;
+  // When the fitted legs or arms cross (the left foot or knee, hand or elbow, right of the right
+  // one in the torso's frame), tries the pair exchanged and keeps whichever the hull and the
+  // centerline favour: walking legs pass close by each other, an arm held across the body meets
+  // the other, and the centerline points can then lead each limb onto the other's data.
+  void resolve_crossed_limbs(const IcpTargets& targets, StickPose& pose) const;
 
   StickModel model_;
   TrackerOptions options_;

@@ -36,7 +36,6 @@ class Perception {
   Perception(const Dataset& dataset, SilhouetteMethod method, const PerceptionOptions& options);
   // Thread-safe. With `compare_masks`, also scores the silhouettes against camNN/mask.
   Observation observe(int frame, bool compare_masks = false) const;
-  const VisualHull& hull() const { return hull_; }
   const SilhouetteExtractor& silhouettes() const { return silhouettes_; }
 
  private:

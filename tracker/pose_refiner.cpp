@@ -268,9 +268,6 @@ double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
     }
   };
   prior({kLHip1, kRHip1, kLHipTwist, kRHipTwist}, options_.leg_prior_m_per_rad);
-  prior({kLShoulder1, kRShoulder1, kLShoulder2, kRShoulder2, kLShoulder3, kRShoulder3, kLElbow,
-         kRElbow},
-        options_.arm_prior_m_per_rad);
   return normal.cost();
 }
 

@@ -26,9 +26,6 @@ struct RefineOptions {
   // so the prior turns the torso back (its heading is otherwise barely observed: 4 corner views
   // give a near-round hull around a torso, and the arms often merge with it).
   double leg_prior_m_per_rad = 0.3;
-  // The same towards hanging arms (shoulder angles and elbow flexion): an arm whose slices merge
-  // with the torso has no data and would otherwise keep whatever pose the last stray points left.
-  double arm_prior_m_per_rad = 0.0;
 };
 
 class PoseRefiner {

@@ -23,7 +23,7 @@ struct SilhouetteOptions {
   // Clean-up of subtracted masks: opening removes speckles, closing fills small holes (a hole
   // in one view would carve a tunnel through the hull).
   int open_px = 3;
-  int close_px = 7;
+  int close_px = 5;
   double mog2_var_threshold = 16.0;  // OpenCV's default squared Mahalanobis distance
 };
 

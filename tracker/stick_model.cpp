@@ -151,14 +151,6 @@ bool is_strict_descendant(int segment, int ancestor) {
   return false;
 }
 
-std::string_view reference_point_name(int point) {
-  static constexpr std::array<std::string_view, kReferencePointCount> names = {
-      "torso_centroid", "head_tip",   "neck",       "l_shoulder", "r_shoulder",
-      "l_hip",          "r_hip",      "l_elbow",    "r_elbow",    "l_knee",
-      "r_knee",         "l_hand_tip", "r_hand_tip", "l_foot",     "r_foot"};
-  return names.at(point);
-}
-
 void BodyDimensions::validate() const {
   const std::pair<const char*, double> lengths[] = {{"torso_half", torso_half},
                                                     {"shoulder_half", shoulder_half},

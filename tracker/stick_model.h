@@ -102,7 +102,6 @@ enum ReferencePoint : int {
   kRFoot,
   kReferencePointCount
 };
-std::string_view reference_point_name(int point);
 
 inline std::array<Eigen::Vector3d, kSegmentCount> no_offsets() {
   std::array<Eigen::Vector3d, kSegmentCount> a;

@@ -53,22 +53,42 @@ VisualHull::VisualHull(std::vector<Camera> cameras, const HullOptions& options)
     throw Error("visual hull: min_views " + std::to_string(min_views_) + " exceeds the " +
                 std::to_string(nc) + " cameras");
   }
-  grid_.voxel = options.voxel_m;
-  const Eigen::Vector3d extent = options.volume.sizes() / options.voxel_m;
-  for (int a = 0; a < 3; ++a) {
-    blocks_[a] = static_cast<int>(std::ceil(extent[a] / kBlock - 1e-9));
-    grid_.dims[a] = blocks_[a] * kBlock;
-  }
-  grid_.origin = options.volume.min() + Eigen::Vector3d::Constant(0.5 * options.voxel_m);
-  const double voxels = static_cast<double>(grid_.dims.x()) * grid_.dims.y() * grid_.dims.z();
-  if (voxels * nc * sizeof(std::uint32_t) > 2e9) {
-    throw Error("visual hull: " + std::to_string(static_cast<long>(voxels)) +
-                " voxels is too many for the projection tables; use a larger voxel size");
-  }
   for (const Camera& cam : cameras_) {
     if (cam.width <= 0 || cam.height <= 0 || cam.width > 32000 || cam.height > 32000) {
       throw Error("visual hull: camera '" + cam.name + "' has no valid image size");
     }
+  }
+  // The volume shrinks to where enough cameras look (sampled every 10 cm, kept with a 10 cm
+  // margin): a large room's corners would only cost table memory.
+  Eigen::AlignedBox3d seen;
+  const double probe = 0.1;
+  const Eigen::Vector3d vmin = options.volume.min(), vmax = options.volume.max();
+  for (double x = vmin.x(); x <= vmax.x(); x += probe) {
+    for (double y = vmin.y(); y <= vmax.y(); y += probe) {
+      for (double z = vmin.z(); z <= vmax.z(); z += probe) {
+        const Eigen::Vector3d X(x, y, z);
+        int views = 0;
+        for (const Camera& cam : cameras_) views += cam.in_frustum(X) ? 1 : 0;
+        if (views >= min_views_) seen.extend(X);
+      }
+    }
+  }
+  if (seen.isEmpty())
+    throw Error("visual hull: no part of the working volume is seen by enough cameras");
+  const Eigen::AlignedBox3d volume(seen.min().cwiseMax(vmin) - Eigen::Vector3d::Constant(probe),
+                                   seen.max().cwiseMin(vmax) + Eigen::Vector3d::Constant(probe));
+  const Eigen::AlignedBox3d box(volume.min().cwiseMax(vmin), volume.max().cwiseMin(vmax));
+  grid_.voxel = options.voxel_m;
+  const Eigen::Vector3d extent = box.sizes() / options.voxel_m;
+  for (int a = 0; a < 3; ++a) {
+    blocks_[a] = std::max(1, static_cast<int>(std::ceil(extent[a] / kBlock - 1e-9)));
+    grid_.dims[a] = blocks_[a] * kBlock;
+  }
+  grid_.origin = box.min() + Eigen::Vector3d::Constant(0.5 * options.voxel_m);
+  const double voxels = static_cast<double>(grid_.dims.x()) * grid_.dims.y() * grid_.dims.z();
+  if (voxels * nc * sizeof(std::uint32_t) > 2e9) {
+    throw Error("visual hull: " + std::to_string(static_cast<long>(voxels)) +
+                " voxels is too many for the projection tables; use a larger voxel size");
   }
   const int nblocks = blocks_.x() * blocks_.y() * blocks_.z();
   block_live_.assign(nblocks, 0);

@@ -49,7 +49,6 @@ class VisualHull {
  public:
   VisualHull(std::vector<Camera> cameras, const HullOptions& options);
   const VoxelGrid& grid() const { return grid_; }
-  int min_views() const { return min_views_; }
   const std::vector<Camera>& cameras() const { return cameras_; }
 
   // silhouettes[c]: CV_8UC1 at camera c's size, nonzero = foreground. Thread-safe.
