@@ -10,6 +10,11 @@
 
 namespace simcap::tracker {
 
+struct SilhouetteRay {
+  Eigen::Vector3d origin;     // the camera centre
+  Eigen::Vector3d direction;  // unit, world
+};
+
 struct IcpTargets {
   std::vector<Eigen::Vector3d> points;  // centerline points (Moschini §3.2)
   // When set, the sticks are kept inside the hull: a limb whose slices merge with the torso or
@@ -19,6 +24,10 @@ struct IcpTargets {
   // Hull surface voxels (a subsample), fitted by the sticks as capsules of
   // BodyDimensions::radius: where a limb's centroids vanish, its bulge in the surface remains.
   std::vector<Eigen::Vector3d> surface;
+  // Rays from each camera through a grid of its silhouette pixels: every one must meet the body.
+  // Unlike the hull's surface, they carry no phantom volume (the parts of the hull that no
+  // camera can see empty), so they are what finally places the limbs.
+  std::vector<SilhouetteRay> rays;
 };
 
 // Closest point on any stick's centerline: the clamped projection onto each (Fig. 4.3-4.4).
@@ -36,6 +45,10 @@ struct ClosestStick {
   double distance = 0;
 };
 ClosestStick closest_stick(const StickGeometry& g, const Eigen::Vector3d& x);
+
+// The point of `ray` nearest to the segment [a, b].
+Eigen::Vector3d nearest_on_ray(const SilhouetteRay& ray, const Eigen::Vector3d& a,
+                               const Eigen::Vector3d& b);
 
 // The X84 threshold on distances: med + k · 1.4826 · med|e - med|, but never below `floor`:
 // near convergence on clean data the MAD shrinks towards 0 and X84 would reject the very points

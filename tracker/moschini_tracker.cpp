@@ -27,6 +27,7 @@ IcpTargets MoschiniTracker::targets_of(const Observation& obs) {
   t.points = obs.points;
   t.hull = &obs.hull;
   t.surface = obs.surface;
+  t.rays = obs.rays;
   return t;
 }
 
@@ -55,13 +56,9 @@ double MoschiniTracker::outside_fraction(const StickPose& pose, const Occupancy&
 
 double MoschiniTracker::score(const StickPose& pose, const Observation& obs, IcpResult* fit,
                               double* outside) const {
-  const IcpResult r = icp_.evaluate(obs.points, pose);
-  const double off = outside_fraction(pose, obs.hull);
-  if (fit) *fit = r;
-  if (outside) *outside = off;
-  // A stick off the hull by a whole segment or a tenth of the points unexplained weigh like
-  // about 5 mm of mean residual each.
-  return r.mean_distance_m + 0.05 * (1.0 - r.inlier_fraction) + 0.05 * off;
+  if (fit) *fit = icp_.evaluate(obs.points, pose);
+  if (outside) *outside = outside_fraction(pose, obs.hull);
+  return refiner_.cost(targets_of(obs), pose);
 }
 
 StickPose MoschiniTracker::best_upright(const Observation& obs, const StickPose* current) const {
@@ -136,7 +133,13 @@ TrackStep MoschiniTracker::step(const Observation& obs) {
   StickPose measured = pose_;
   if (!obs.points.empty()) {
     const IcpTargets targets = targets_of(obs);
+    // Two hypotheses: Moschini's traversal, which can jump to where the centerline now is, and
+    // the joint refinement alone from the previous pose, which cannot be led astray by a limb
+    // whose centroids merged with another part's.
+    StickPose refined = measured;
     icp_.fit(targets, measured);
+    refiner_.refine(targets, refined);
+    if (refiner_.cost(targets, refined) < refiner_.cost(targets, measured)) measured = refined;
     resolve_crossed_limbs(targets, measured);
     score(measured, obs, &out.icp, &out.outside_fraction);
     const RecoveryOptions& rec = options_.recovery;

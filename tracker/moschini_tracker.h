@@ -57,7 +57,7 @@ class MoschiniTracker {
 
   // What ICP fits on this frame.
   static IcpTargets targets_of(const Observation& obs);
-  // Lower is better: ICP residual plus penalties for unexplained points and sticks off the hull.
+  // Lower is better: the joint refinement's cost (centerline, hull, silhouette rays, priors).
   double score(const StickPose& pose, const Observation& obs, IcpResult* fit = nullptr,
                double* outside = nullptr) const;
   // Fraction of points sampled every voxel along the sticks that lie off the hull.

@@ -18,7 +18,18 @@ Perception::Perception(const Dataset& dataset, SilhouetteMethod method,
     : dataset_(&dataset),
       options_(options),
       silhouettes_(dataset, method, options.silhouettes),
-      hull_(dataset.cameras(), options.hull) {}
+      hull_(dataset.cameras(), options.hull) {
+  const int stride = options_.ray_stride;
+  if (stride <= 0) return;
+  for (const Camera& cam : dataset.cameras()) {
+    std::vector<Eigen::Vector3f>& table = ray_directions_.emplace_back();
+    for (int v = stride / 2; v < cam.height; v += stride) {
+      for (int u = stride / 2; u < cam.width; u += stride) {
+        table.push_back(cam.unproject(Eigen::Vector2d(u, v)).cast<float>());
+      }
+    }
+  }
+}
 
 Observation Perception::observe(int frame, bool compare_masks) const {
   using Clock = std::chrono::steady_clock;
@@ -33,6 +44,18 @@ Observation Perception::observe(int frame, bool compare_masks) const {
     if (compare_masks)
       obs.silhouette_iou[c] = silhouette_iou(silhouettes[c], dataset_->mask(c, frame));
   });
+  const int stride = options_.ray_stride;
+  for (int c = 0; stride > 0 && c < nc; ++c) {
+    const Camera& cam = dataset_->cameras()[c];
+    const Eigen::Vector3d origin = cam.centre();
+    size_t i = 0;
+    for (int v = stride / 2; v < cam.height; v += stride) {
+      const std::uint8_t* row = silhouettes[c].ptr<std::uint8_t>(v);
+      for (int u = stride / 2; u < cam.width; u += stride, ++i) {
+        if (row[u]) obs.rays.push_back({origin, ray_directions_[c][i].cast<double>().normalized()});
+      }
+    }
+  }
   obs.silhouettes_ms = ms_since(t);
   t = Clock::now();
   hull_.carve(silhouettes, obs.hull);

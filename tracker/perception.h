@@ -19,6 +19,8 @@ struct PerceptionOptions {
   SilhouetteOptions silhouettes;
   // Every n-th surface voxel (by (x + y + z) mod n) goes to ICP; 0 = none.
   int surface_stride = 5;
+  // Silhouette pixels on a grid of this many pixels become rays for the fit; 0 = none.
+  int ray_stride = 4;
 };
 
 struct Observation {
@@ -27,6 +29,7 @@ struct Observation {
   std::vector<CenterlinePoint> centerline;
   std::vector<Eigen::Vector3d> points;   // centerline positions, for ICP
   std::vector<Eigen::Vector3d> surface;  // hull surface voxels (a subsample), for ICP
+  std::vector<SilhouetteRay> rays;       // through silhouette pixels on the ray grid
   std::vector<double> silhouette_iou;    // per camera vs the dataset's masks, when asked for
   double silhouettes_ms = 0, hull_ms = 0, centerline_ms = 0;
 };
@@ -43,6 +46,9 @@ class Perception {
   PerceptionOptions options_;
   SilhouetteExtractor silhouettes_;
   VisualHull hull_;
+  // Per camera, the world direction through every pixel of the ray grid (row-major), so that
+  // a frame's rays cost a lookup instead of an iterative undistortion each.
+  std::vector<std::vector<Eigen::Vector3f>> ray_directions_;
 };
 
 }  // namespace simcap::tracker

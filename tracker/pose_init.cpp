@@ -1,6 +1,8 @@
 #include "tracker/pose_init.h"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -202,40 +204,80 @@ std::array<Eigen::Vector3d, kSegmentCount> measure_centerline_offsets(
   return offsets;
 }
 
-void measure_radii(BodyDimensions& dims, JointSet joints, const StickPose& pose,
-                   const std::vector<Eigen::Vector3d>& surface) {
-  const StickModel model(dims, joints);
-  const StickGeometry g = model.geometry(pose);
+namespace {
+
+// One pass of measure_radii: every ray goes to the part it passes most inside of, given the
+// radii so far (nearest axis alone would hand the torso's edge rays to an arm hanging beside it).
+void measure_radii_once(BodyDimensions& dims, const StickGeometry& g,
+                        const std::vector<SilhouetteRay>& rays) {
+  // A ray that meets a cylinder of radius r passes its axis at a distance uniform in [0, r] (the
+  // silhouette pixels are a uniform grid), so r is twice the median: the median shrugs off the
+  // rays that belong to another part yet pass this one more inside.
+  constexpr int kBins = 6;  // directions across the torso axis, folded into a quarter turn
   std::array<std::vector<double>, kSegmentCount> d;
-  std::vector<double> width;
-  const double cos30 = std::cos(std::numbers::pi / 6);
-  for (const Eigen::Vector3d& v : surface) {
+  std::array<std::vector<double>, kBins> torso;
+  const double torso_reach = std::max(dims.radius[kTorso], dims.torso_width);
+  for (const SilhouetteRay& ray : rays) {
     int best = -1;
-    double best_d = std::numeric_limits<double>::infinity(), best_t = 0;
+    double best_inside = std::numeric_limits<double>::infinity(), best_d = 0, best_t = 0;
     Eigen::Vector3d across = Eigen::Vector3d::Zero();
     for (int s = 0; s < kSegmentCount; ++s) {
       const Eigen::Vector3d ab = g.line_distal[s] - g.line_proximal[s];
-      const double t = std::clamp((v - g.line_proximal[s]).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-      const Eigen::Vector3d r = v - g.line_proximal[s] - t * ab;
-      if (r.norm() < best_d) best = s, best_d = r.norm(), best_t = t, across = r;
+      const Eigen::Vector3d q = nearest_on_ray(ray, g.line_proximal[s], g.line_distal[s]);
+      const double t = std::clamp((q - g.line_proximal[s]).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      const Eigen::Vector3d r = q - g.line_proximal[s] - t * ab;
+      const double inside = r.norm() - (s == kTorso ? torso_reach : dims.radius[s]);
+      if (inside < best_inside)
+        best = s, best_inside = inside, best_d = r.norm(), best_t = t, across = r;
     }
     if (best < 0 || best_t < 0.2 || best_t > 0.8) continue;
-    if (best != kTorso) {
-      d[best].push_back(best_d);
-      continue;
-    }
+    d[best].push_back(best_d);
+    if (best != kTorso) continue;
     const Eigen::Vector3d p = g.rotation[kTorso].transpose() * across;
-    const double flat = std::hypot(p.x(), p.z());
-    if (std::abs(p.z()) > cos30 * flat) d[kTorso].push_back(std::abs(p.z()));
-    if (std::abs(p.x()) > cos30 * flat) width.push_back(std::abs(p.x()));
+    const double angle = std::atan2(std::abs(p.z()), std::abs(p.x()));
+    torso[std::min(kBins - 1, static_cast<int>(angle / (std::numbers::pi / 2) * kBins))].push_back(
+        best_d);
   }
-  auto median = [](std::vector<double>& v) {
+  auto twice_median = [](std::vector<double>& v) {
     if (v.size() < 10) return 0.0;
     std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
+    return 2 * v[v.size() / 2];
   };
-  for (int s = 0; s < kSegmentCount; ++s) dims.radius[s] = median(d[s]);
-  dims.torso_width = dims.radius[kTorso] > 0 ? median(width) : 0.0;
+  for (int s = 0; s < kSegmentCount; ++s) dims.radius[s] = twice_median(d[s]);
+  // The torso's reach h across its axis in direction (cos φ, sin φ) is the ellipse's support
+  // function, h² = a² cos² φ + b² sin² φ: least squares for a² (half-width) and b² (depth).
+  Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d y = Eigen::Vector2d::Zero();
+  for (int k = 0; k < kBins; ++k) {
+    const double h = twice_median(torso[k]);
+    if (h <= 0) continue;
+    const double phi = (k + 0.5) / kBins * std::numbers::pi / 2;
+    const Eigen::Vector2d row(std::pow(std::cos(phi), 2), std::pow(std::sin(phi), 2));
+    A += row * row.transpose();
+    y += row * h * h;
+  }
+  dims.torso_width = dims.radius[kTorso];
+  if (std::abs(A.determinant()) > 1e-9) {
+    const Eigen::Vector2d ab2 = A.ldlt().solve(y);
+    if (ab2.x() > 0 && ab2.y() > 0) {
+      dims.torso_width = std::sqrt(ab2.x());
+      dims.radius[kTorso] = std::sqrt(ab2.y());
+    }
+  }
+}
+
+}  // namespace
+
+void measure_radii(BodyDimensions& dims, JointSet joints, const StickPose& pose,
+                   const std::vector<SilhouetteRay>& rays) {
+  const StickGeometry g = StickModel(dims, joints).geometry(pose);
+  // Start from typical proportions of each part's length, then reassign and remeasure.
+  dims.radius = {0.6 * dims.shoulder_half, 0.3 * dims.head,       0.14 * dims.upper_arm,
+                 0.09 * dims.forearm,      0.14 * dims.upper_arm, 0.09 * dims.forearm,
+                 0.17 * dims.thigh,        0.13 * dims.calf,      0.17 * dims.thigh,
+                 0.13 * dims.calf};
+  dims.torso_width = dims.shoulder_half;
+  for (int pass = 0; pass < 3; ++pass) measure_radii_once(dims, g, rays);
 }
 
 BodyDimensions dimensions_from_height(double height_m) {

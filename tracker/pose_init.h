@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/joint_track.h"
+#include "tracker/icp_targets.h"
 #include "tracker/stick_model.h"
 #include "tracker/visual_hull.h"
 
@@ -36,12 +37,12 @@ StickPose pose_from_joints(const StickModel& model, const NamedJoints& joints,
 std::array<Eigen::Vector3d, kSegmentCount> measure_centerline_offsets(
     const StickModel& model, const StickPose& pose, const std::vector<Eigen::Vector3d>& points);
 
-// Radius of each stick's part of the hull on a frame whose pose is known: the median distance
-// of the surface voxels nearest each stick's middle to its centerline; for the torso its depth
-// and half-width (voxels within 30 degrees of its forward and lateral axes). Sets
+// Radius of each stick's body part on a frame whose pose is known, from the silhouette rays
+// passing through its middle; for the torso its depth and half-width (an ellipse fitted to its
+// reach across the axis in six directions; round when they do not determine it). Sets
 // dims.radius and dims.torso_width.
 void measure_radii(BodyDimensions& dims, JointSet joints, const StickPose& pose,
-                   const std::vector<Eigen::Vector3d>& surface);
+                   const std::vector<SilhouetteRay>& rays);
 
 // Dimensions for a person of `height_m`: simcap's humanoid (Drillis-Contini proportions)
 // scaled to that height, with Table 5.3's d_s = 0.8 and d_H = 0.7 for the torso.

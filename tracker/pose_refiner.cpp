@@ -103,6 +103,8 @@ class Normal {
     (*H_)(parameter, parameter) += slope * slope;
     (*rhs_)(parameter) -= slope * e;
   }
+  // A one-sided residual that is satisfied: it counts, so that costs stay comparable.
+  void add_zero() { ++count_; }
   double cost() const { return count_ ? cost_ / count_ : 0.0; }
 
  private:
@@ -162,6 +164,7 @@ struct PoseRefiner::Associations {
   };
   std::vector<Sample> contained;             // stick samples off the hull
   std::vector<std::pair<int, int>> surface;  // (voxel, segment), X84 inliers
+  std::vector<std::pair<int, int>> rays;     // (ray, nearest capsule), X84 inliers
 };
 
 PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
@@ -220,15 +223,41 @@ PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
       }
     }
   }
+  // Silhouette rays: the capsule each passes nearest (most inside). No X84 here: most rays meet
+  // a capsule, so the misses' median and MAD are zero and it would reject every ray that still
+  // pulls a limb into place; only misses beyond any limb's reach are dropped.
+  if (!targets.rays.empty() && options_.ray_weight > 0) {
+    for (size_t i = 0; i < targets.rays.size(); ++i) {
+      double best = std::numeric_limits<double>::infinity(), d;
+      int owner = -1;
+      Eigen::Vector3d dir;
+      for (int s = 0; s < kSegmentCount; ++s) {
+        if (dims.radius[s] <= 0) continue;
+        const Eigen::Vector3d q =
+            nearest_on_ray(targets.rays[i], g.line_proximal[s], g.line_distal[s]);
+        if (surface_distance(g, dims, s, q, &d, &dir) && d < best) best = d, owner = s;
+      }
+      if (owner < 0 || best > options_.ray_max_miss_m) continue;
+      if (owner == kLCalf || owner == kRCalf) {
+        // The model has no feet: rays past the ankle would drag the calf towards the toes.
+        const Eigen::Vector3d ab = g.line_distal[owner] - g.line_proximal[owner];
+        const Eigen::Vector3d q =
+            nearest_on_ray(targets.rays[i], g.line_proximal[owner], g.line_distal[owner]);
+        if ((q - g.line_proximal[owner]).dot(ab) > options_.foot_start * ab.squaredNorm()) continue;
+      }
+      a.rays.emplace_back(static_cast<int>(i), owner);
+    }
+  }
   return a;
 }
 
 double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
-                             const StickPose& pose, Eigen::MatrixXd* H,
+                             const StickPose& pose, const StickPose* start, Eigen::MatrixXd* H,
                              Eigen::VectorXd* rhs) const {
   const StickGeometry g = model_->geometry(pose);
   Normal normal(*model_, g, pose, H, rhs);
   // Centerline points: only the distance across a stick's line counts, except past a free tip.
+  const double wp2 = options_.centerline_weight * options_.centerline_weight;
   for (const auto& [i, s] : a.points) {
     const Eigen::Vector3d& x = targets.points[i];
     const Eigen::Vector3d ab = g.line_distal[s] - g.line_proximal[s];
@@ -243,7 +272,7 @@ double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
       j.J = P * j.J;
       r = P * r;
     }
-    normal.add(j, r, 1.0);
+    normal.add(j, r, wp2);
   }
   const double wc2 = options_.containment_weight * options_.containment_weight;
   for (const auto& c : a.contained) {
@@ -261,6 +290,17 @@ double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
     const Eigen::Vector3d surface_point = targets.surface[i] - e * dir;
     normal.add_scalar(normal.jacobian(s, surface_point), -dir, e, ws2);
   }
+  const double wr2 = options_.ray_weight * options_.ray_weight;
+  for (const auto& [i, s] : a.rays) {
+    const Eigen::Vector3d q = nearest_on_ray(targets.rays[i], g.line_proximal[s], g.line_distal[s]);
+    double e;
+    Eigen::Vector3d dir;
+    if (!surface_distance(g, dims, s, q, &e, &dir) || e <= 0) {
+      normal.add_zero();
+      continue;
+    }
+    normal.add_scalar(normal.jacobian(s, q - e * dir), -dir, e, wr2);
+  }
   auto prior = [&](std::initializer_list<int> angles, double slope) {
     if (slope <= 0) return;
     for (const int k : angles) {
@@ -268,11 +308,23 @@ double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
     }
   };
   prior({kLHip1, kRHip1, kLHipTwist, kRHipTwist}, options_.leg_prior_m_per_rad);
+  if (start && options_.motion_prior_m_per_rad > 0) {
+    const double slope = options_.motion_prior_m_per_rad;
+    for (int k = 0; k < model_->angle_count(); ++k) {
+      normal.add_parameter(6 + k, slope, slope * (pose.theta[k] - start->theta[k]));
+    }
+    const Eigen::AngleAxisd turn(pose.R0 * start->R0.transpose());
+    const Eigen::Vector3d rot = turn.angle() * turn.axis();
+    for (int i = 0; i < 3; ++i) {
+      normal.add_parameter(i, slope, slope * (pose.t0(i) - start->t0(i)));
+      normal.add_parameter(3 + i, slope, slope * rot(i));
+    }
+  }
   return normal.cost();
 }
 
 double PoseRefiner::cost(const IcpTargets& targets, const StickPose& pose) const {
-  return evaluate(targets, associate(targets, pose), pose, nullptr, nullptr);
+  return evaluate(targets, associate(targets, pose), pose, nullptr, nullptr, nullptr);
 }
 
 void PoseRefiner::refine(const IcpTargets& targets, StickPose& pose) const {
@@ -280,17 +332,19 @@ void PoseRefiner::refine(const IcpTargets& targets, StickPose& pose) const {
   const int np = 6 + na;
   const auto& ranges = model_->ranges();
   // Levenberg-Marquardt: the damping shrinks after a step that lowers the cost and grows (the
-  // step is retried) after one that does not.
+  // step is retried, up to 10 times: one-sided ray residuals make the first Gauss-Newton model
+  // optimistic far from the data) after one that does not.
   double lambda = options_.damping;
+  const StickPose start = pose;
   for (int it = 0; it < options_.iterations; ++it) {
     Eigen::MatrixXd H = Eigen::MatrixXd::Zero(np, np);
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(np);
     const Associations assoc = associate(targets, pose);
-    const double cost = evaluate(targets, assoc, pose, &H, &rhs);
+    const double cost = evaluate(targets, assoc, pose, &start, &H, &rhs);
     const double scale = H.diagonal().mean();
     if (!(scale > 0)) return;
     bool improved = false;
-    for (int attempt = 0; attempt < 4 && !improved; ++attempt) {
+    for (int attempt = 0; attempt < 10 && !improved; ++attempt) {
       Eigen::MatrixXd A = H;
       A.diagonal().array() += lambda * scale;
       const Eigen::VectorXd step = A.ldlt().solve(rhs);
@@ -302,7 +356,7 @@ void PoseRefiner::refine(const IcpTargets& targets, StickPose& pose) const {
       for (int k = 0; k < na; ++k) {
         next.theta[k] = limit_angle(next.theta[k] + step(6 + k), ranges[k]);
       }
-      const double next_cost = evaluate(targets, assoc, next, nullptr, nullptr);
+      const double next_cost = evaluate(targets, assoc, next, &start, nullptr, nullptr);
       if (next_cost < cost) {
         pose = next;
         lambda = std::max(lambda / 3, 1e-6);

@@ -17,15 +17,24 @@ struct RefineOptions {
   double damping = 0.01;
   double x84_k = 3.5;
   double x84_floor_m = 0.02;
+  double centerline_weight = 1.0;   // per centerline point
   double containment_weight = 1.0;  // per stick sample off the hull
   int containment_search = 6;       // voxels searched around a sample for the nearest occupied
   double surface_weight = 0.3;      // per hull surface voxel
+  // Per silhouette ray, on its distance outside the nearest capsule (0 when a capsule meets it).
+  double ray_weight = 1.0;
+  double ray_max_miss_m = 0.6;  // rays passing farther from every capsule are left out
+  double foot_start = 0.9;      // rays nearest a calf beyond this fraction of it meet a foot
   // A weak prior towards the neutral pose on hip abduction and twist, as a residual of this
   // many metres per radian: people walk and stand with their legs swinging fore and aft. A
   // torso turned away from the true heading must spread the legs sideways to reach their data,
   // so the prior turns the torso back (its heading is otherwise barely observed: 4 corner views
   // give a near-round hull around a torso, and the arms often merge with it).
   double leg_prior_m_per_rad = 0.3;
+  // A weak pull of every parameter towards where the refinement started (the prediction), as
+  // this many metres per radian (and per metre for the torso's translation): directions the
+  // data barely observe then stay put instead of drifting a little further on every frame.
+  double motion_prior_m_per_rad = 0.05;
 };
 
 class PoseRefiner {
@@ -42,8 +51,9 @@ class PoseRefiner {
   struct Associations;
   Associations associate(const IcpTargets& targets, const StickPose& pose) const;
   // The cost at `pose` with fixed associations, and the normal equations when H and g are given.
+  // With `start`, adds the motion prior towards it.
   double evaluate(const IcpTargets& targets, const Associations& a, const StickPose& pose,
-                  Eigen::MatrixXd* H, Eigen::VectorXd* g) const;
+                  const StickPose* start, Eigen::MatrixXd* H, Eigen::VectorXd* g) const;
   const StickModel* model_;
   RefineOptions options_;
 };

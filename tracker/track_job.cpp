@@ -69,7 +69,7 @@ TrackSummary run_moschini(const fs::path& dataset_path, const TrackOptions& opti
     const StickPose start = pose_from_joints(plain, joints, source);
     const Observation first = perception.observe(frames.front());
     dims.centerline_offset = measure_centerline_offsets(plain, start, first.points);
-    measure_radii(dims, topt.joints, start, first.surface);
+    measure_radii(dims, topt.joints, start, first.rays);
     tracker.emplace(dims, topt);
     tracker->start(start);
   } else {
@@ -90,7 +90,7 @@ TrackSummary run_moschini(const fs::path& dataset_path, const TrackOptions& opti
     MoschiniTracker finder(dims, topt);
     finder.start_upright(first.front());
     const StickPose start = finder.step(first.front()).pose;
-    measure_radii(dims, topt.joints, start, first.front().surface);
+    measure_radii(dims, topt.joints, start, first.front().rays);
     tracker.emplace(dims, topt);
     tracker->start(start);
   }
@@ -205,6 +205,13 @@ TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
     std::snprintf(buf, sizeof buf, "%s,%.5f\n", name, value);
     body.out() << buf;
   }
+  for (int s = 0; s < kSegmentCount; ++s) {
+    std::snprintf(buf, sizeof buf, "radius_%s,%.5f\n", std::string(segment_name(s)).c_str(),
+                  dims->radius[s]);
+    body.out() << buf;
+  }
+  std::snprintf(buf, sizeof buf, "torso_width,%.5f\n", dims->torso_width);
+  body.out() << buf;
   body.commit();
   centerline.commit();
   timings.commit();

@@ -78,8 +78,9 @@ TEST(ArticulatedIcp, RecoversAKnownPoseFromPointsOnTheSticks) {
     options.refine.iterations = 50;
     options.refine.tolerance = 0;
     options.refine.leg_prior_m_per_rad = 0;  // the prior's pull is a deliberate bias
+    options.refine.motion_prior_m_per_rad = 0;
     const ArticulatedIcp icp(model, options);
-    const IcpResult r = icp.fit(IcpTargets{points, nullptr, {}}, pose);
+    const IcpResult r = icp.fit(IcpTargets{points, nullptr, {}, {}}, pose);
     // From over 8 cm off, noise-free points bring every reference point back to within 1.2 cm
     // (measured: 9.7 mm with the URDF joint set, 4.1 mm with Moschini's); the aim is 2 mm.
     EXPECT_LT(max_joint_error(model, pose, truth), 0.012) << static_cast<int>(set);
@@ -102,7 +103,7 @@ TEST(ArticulatedIcp, TheHierarchicalTraversalAloneConverges) {
   options.max_iterations = 20;
   options.converged_m = 1e-5;
   options.min_improvement_m = 1e-7;
-  ArticulatedIcp(model, options).fit(IcpTargets{points, nullptr, {}}, pose);
+  ArticulatedIcp(model, options).fit(IcpTargets{points, nullptr, {}, {}}, pose);
   EXPECT_LT(max_joint_error(model, pose, truth), 0.25 * before);
 }
 
@@ -119,7 +120,7 @@ TEST(ArticulatedIcp, ToleratesNoiseAndOutliers) {
   }
   StickPose pose = perturbed(truth, 0.1, 0.04);
   const ArticulatedIcp icp(model);
-  const IcpResult r = icp.fit(IcpTargets{points, nullptr, {}}, pose);
+  const IcpResult r = icp.fit(IcpTargets{points, nullptr, {}, {}}, pose);
   EXPECT_LT(max_joint_error(model, pose, truth), 0.03);
   EXPECT_LT(r.inlier_fraction, 0.97);  // X84 rejected some of the scatter
 }
@@ -138,7 +139,7 @@ TEST(ArticulatedIcp, KeepsJointsConnectedAndInRange) {
     points.push_back(knee + (-Eigen::Vector3d::UnitY() + 0.6 * forward).normalized() * (0.02 * i));
   }
   StickPose pose = reference_pose();
-  ArticulatedIcp(model).fit(IcpTargets{points, nullptr, {}}, pose);
+  ArticulatedIcp(model).fit(IcpTargets{points, nullptr, {}, {}}, pose);
   const auto& ranges = model.ranges();
   for (int k = 0; k < model.angle_count(); ++k) {
     EXPECT_GE(pose.theta[k], ranges[k].lo - 1e-9) << angle_name(k);

@@ -1,0 +1,129 @@
+// The silhouette-ray cues of the fit: the ray-to-stick geometry, radii measured from rays, and
+// the refinement pulling a displaced limb back onto the rays of its silhouette.
+#include <gtest/gtest.h>
+
+#include <numbers>
+#include <random>
+
+#include "core/camera.h"
+#include "tracker/icp_targets.h"
+#include "tracker/pose_init.h"
+#include "tracker/pose_refiner.h"
+
+namespace simcap::tracker {
+namespace {
+
+double segment_distance(const Eigen::Vector3d& x, const Eigen::Vector3d& a,
+                        const Eigen::Vector3d& b) {
+  const double t = std::clamp((x - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+  return (x - a - t * (b - a)).norm();
+}
+
+TEST(NearestOnRay, MatchesADenseSearchAlongTheRay) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const Eigen::Vector3d a(u(rng), u(rng), u(rng)), b(u(rng), u(rng), u(rng));
+    const SilhouetteRay ray{Eigen::Vector3d(4 * u(rng), 3 + u(rng), 4 * u(rng)),
+                            Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized()};
+    const Eigen::Vector3d q = nearest_on_ray(ray, a, b);
+    EXPECT_NEAR((q - ray.origin).cross(ray.direction).norm(), 0.0, 1e-9) << "not on the ray";
+    double best = std::numeric_limits<double>::infinity();
+    for (int i = 0; i <= 200000; ++i) {
+      best = std::min(best, segment_distance(ray.origin + 1e-4 * i * ray.direction, a, b));
+    }
+    EXPECT_LE(segment_distance(q, a, b), best + 1e-6) << trial;
+  }
+}
+
+// A ring of cameras around `target`; the rays through every pixel that sees the capsule body of
+// `pose` (a stick model with radii), on a `stride` pixel grid.
+std::vector<SilhouetteRay> silhouette_rays(const StickModel& model, const StickPose& pose,
+                                           int stride) {
+  const StickGeometry g = model.geometry(pose);
+  const BodyDimensions& dims = model.dimensions();
+  std::vector<SilhouetteRay> rays;
+  for (int c = 0; c < 6; ++c) {
+    const double angle = 2 * std::numbers::pi * c / 6 + 0.3;
+    const Eigen::Vector3d eye =
+        pose.t0 + Eigen::Vector3d(4 * std::sin(angle), 1.0, 4 * std::cos(angle));
+    const Camera cam = Camera::look_at("c", 320, 480, 0.7, eye, pose.t0);
+    for (int v = 0; v < cam.height; v += stride) {
+      for (int x = 0; x < cam.width; x += stride) {
+        const SilhouetteRay ray{cam.centre(), cam.unproject(Eigen::Vector2d(x, v))};
+        for (int s = 0; s < kSegmentCount; ++s) {
+          const Eigen::Vector3d q = nearest_on_ray(ray, g.line_proximal[s], g.line_distal[s]);
+          if (segment_distance(q, g.line_proximal[s], g.line_distal[s]) < dims.radius[s]) {
+            rays.push_back(ray);
+            break;
+          }
+        }
+      }
+    }
+  }
+  return rays;
+}
+
+BodyDimensions round_body() {
+  BodyDimensions dims;
+  dims.radius = {0.13, 0.09, 0.05, 0.04, 0.05, 0.04, 0.075, 0.055, 0.075, 0.055};
+  dims.torso_width = dims.radius[kTorso];
+  return dims;
+}
+
+StickPose walking_pose() {
+  StickPose p;
+  p.t0 = {0.2, 1.1, -0.1};
+  p.R0 = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  p.theta[kLShoulder1] = 0.5;
+  p.theta[kRShoulder1] = -0.5;
+  p.theta[kLElbow] = -0.6;
+  p.theta[kLHip2] = -0.4;
+  p.theta[kRHip2] = 0.3;
+  p.theta[kRKnee] = 0.5;
+  return p;
+}
+
+TEST(MeasureRadii, RecoversTheRadiiOfCapsulesFromTheirRays) {
+  const BodyDimensions truth = round_body();
+  const StickModel model(truth, JointSet::urdf);
+  const StickPose pose = walking_pose();
+  const auto rays = silhouette_rays(model, pose, 2);
+  BodyDimensions measured = truth;
+  measured.radius.fill(0);
+  measured.torso_width = 0;
+  measure_radii(measured, JointSet::urdf, pose, rays);
+  for (int s = 0; s < kSegmentCount; ++s) {
+    EXPECT_NEAR(measured.radius[s], truth.radius[s], 0.2 * truth.radius[s]) << segment_name(s);
+  }
+  EXPECT_NEAR(measured.torso_width, truth.torso_width, 0.2 * truth.torso_width);
+}
+
+TEST(PoseRefiner, SilhouetteRaysPullADisplacedArmBack) {
+  const StickModel model(round_body(), JointSet::urdf);
+  const StickPose truth = walking_pose();
+  IcpTargets targets;
+  targets.rays = silhouette_rays(model, truth, 3);
+  ASSERT_GT(targets.rays.size(), 500u);
+  StickPose pose = truth;
+  pose.theta[kLShoulder1] = 0.15;  // the arm swung 0.35 rad towards the torso
+  pose.theta[kLElbow] = -0.2;
+  RefineOptions options;
+  options.iterations = 30;
+  options.tolerance = 0;
+  options.leg_prior_m_per_rad = 0;
+  options.motion_prior_m_per_rad = 0;
+  const PoseRefiner refiner(model, options);
+  const auto hand = [&](const StickPose& p) {
+    return model.reference_points(model.geometry(p))[kLHandTip];
+  };
+  const double before = (hand(pose) - hand(truth)).norm();
+  ASSERT_GT(before, 0.15);
+  const double cost_before = refiner.cost(targets, pose);
+  refiner.refine(targets, pose);
+  EXPECT_LT(refiner.cost(targets, pose), 0.1 * cost_before);
+  EXPECT_LT((hand(pose) - hand(truth)).norm(), 0.04);
+}
+
+}  // namespace
+}  // namespace simcap::tracker
