@@ -1,19 +1,16 @@
 #include "core/joint_track.h"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <limits>
-#include <map>
 
 #include "core/csv.h"
+#include "core/joint_table.h"
 
 namespace simcap {
 namespace fs = std::filesystem;
 
 int JointTrack::joint_index(const std::string& name) const {
-  const auto it = std::find(joints.begin(), joints.end(), name);
-  return it == joints.end() ? -1 : static_cast<int>(it - joints.begin());
+  return find_joint(joints, name);
 }
 
 void JointTrack::add_frame(int frame, std::vector<Eigen::Vector3d> p) {
@@ -37,32 +34,14 @@ void write_joint_track(const fs::path& path, const JointTrack& track) {
 }
 
 JointTrack read_joint_track(const fs::path& path) {
-  CsvReader csv(path, kJoints3dColumns);
-  JointTrack track;
-  std::map<int, std::map<int, Eigen::Vector3d>> rows;
-  while (csv.next()) {
-    const long frame = csv.integer(0);
-    if (frame < 0) csv.fail(0, "frame numbers start at 0");
-    const std::string& name = csv.text(1);
-    if (name.empty()) csv.fail(1, "empty joint name");
-    int j = track.joint_index(name);
-    if (j < 0) {
-      j = static_cast<int>(track.joints.size());
-      track.joints.push_back(name);
-    }
-    const Eigen::Vector3d p(csv.number(2), csv.number(3), csv.number(4));
-    if (!p.allFinite()) csv.fail(2, "position must be finite");
-    auto& frame_rows = rows[static_cast<int>(frame)];
-    if (!frame_rows.emplace(j, p).second)
-      csv.fail(1, "joint '" + name + "' repeated in frame " + std::to_string(frame));
-  }
   const Eigen::Vector3d nan = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
-  for (const auto& [frame, joints] : rows) {
-    std::vector<Eigen::Vector3d> p(track.joints.size(), nan);
-    for (const auto& [j, pos] : joints) p[j] = pos;
-    track.add_frame(frame, std::move(p));
-  }
-  return track;
+  JointTable<Eigen::Vector3d> table =
+      read_joint_table(path, kJoints3dColumns, nan, [](const CsvReader& csv) {
+        const Eigen::Vector3d p(csv.number(2), csv.number(3), csv.number(4));
+        if (!p.allFinite()) csv.fail(2, "position must be finite");
+        return p;
+      });
+  return {std::move(table.joints), std::move(table.frames), std::move(table.values)};
 }
 
 }  // namespace simcap

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <span>
 #include <string>
 
 #include "core/error.h"
@@ -161,12 +162,32 @@ class BodyPlan {
   }
   double spacing() const { return 0.0055 * H_; }
 
+  // A cross-section of the upright trunk or head at canonical height h (fraction of H): semi-axes
+  // in units of H, shifted forward by z H.
+  struct Row {
+    double h, half_width, half_depth, z;
+  };
+  // A vertical tube from `bottom` to `top` (metres) through `rows`, capped beyond the first and
+  // last row.
+  Part upright_tube(std::span<const Row> rows, double bottom, double top, int segments,
+                    int cap_rings) const {
+    Part p;
+    p.tube.axis = {{0, bottom, 0}, {0, top, 0}};
+    p.tube.start_cap = height_(rows.front().h) - bottom;
+    p.tube.end_cap = top - height_(rows.back().h);
+    for (const Row& r : rows) {
+      p.tube.sections.push_back(
+          k(height_(r.h) - bottom, r.half_width, r.half_depth, {0, 0, r.z * H_}));
+    }
+    p.tube.segments = segments;
+    p.tube.ring_spacing = spacing();
+    p.tube.cap_rings = cap_rings;
+    return p;
+  }
+
   // Pelvis and trunk, crotch to the base of the neck. The belt line at 0.60 H separates the
   // trousers from the shirt.
   Part torso() const {
-    struct Row {
-      double h, half_width, half_depth, z;
-    };
     // Hip breadth ~0.205 H, waist breadth ~0.18 H, chest breadth ~0.175 H, chest depth ~0.135 H
     // (ANSUR II means / stature, clothed); the top rows narrow into the neck (simcap choice).
     const Row rows[] = {{0.485, 0.082, 0.056, 0.000},  {0.505, 0.097, 0.064, -0.002},
@@ -175,18 +196,8 @@ class BodyPlan {
                         {0.680, 0.086, 0.062, 0.006},  {0.720, 0.087, 0.068, 0.008},
                         {0.760, 0.085, 0.068, 0.006},  {0.790, 0.080, 0.063, 0.002},
                         {0.810, 0.072, 0.056, -0.002}, {0.822, 0.062, 0.048, -0.006}};
-    const double bottom = height_(0.460), top = height_(0.844);
-    Part p;
-    p.tube.axis = {{0, bottom, 0}, {0, top, 0}};
-    p.tube.start_cap = height_(rows[0].h) - bottom;
-    p.tube.end_cap = top - height_(std::end(rows)[-1].h);
-    for (const Row& r : rows) {
-      p.tube.sections.push_back(
-          k(height_(r.h) - bottom, r.half_width, r.half_depth, {0, 0, r.z * H_}));
-    }
-    p.tube.segments = 72;
-    p.tube.ring_spacing = spacing();
-    p.tube.cap_rings = 8;
+    const double bottom = height_(0.460);
+    Part p = upright_tube(rows, bottom, height_(0.844), 72, 8);
     const auto s_of = [&](const char* name) { return at(name).y() - bottom; };
     p.labels = {{0, joint("sacroiliac")}};
     p.weights = {{0, joint("sacroiliac"), 0}};
@@ -205,25 +216,12 @@ class BodyPlan {
   // breadth ~0.088 H and length ~0.112 H (ANSUR II / stature); the jaw and face rows push the
   // section forward of the cervical spine (simcap choice).
   Part head() const {
-    struct Row {
-      double h, half_width, half_depth, z;
-    };
     const Row rows[] = {{0.815, 0.036, 0.036, -0.010}, {0.840, 0.034, 0.035, -0.008},
                         {0.862, 0.033, 0.035, -0.004}, {0.876, 0.037, 0.042, 0.002},
                         {0.890, 0.042, 0.050, 0.006},  {0.910, 0.045, 0.055, 0.007},
                         {0.935, 0.047, 0.057, 0.005}};
-    const double bottom = height_(0.800), top = at("skull_tip").y();
-    Part p;
-    p.tube.axis = {{0, bottom, 0}, {0, top, 0}};
-    p.tube.start_cap = height_(rows[0].h) - bottom;
-    p.tube.end_cap = top - height_(std::end(rows)[-1].h);
-    for (const Row& r : rows) {
-      p.tube.sections.push_back(
-          k(height_(r.h) - bottom, r.half_width, r.half_depth, {0, 0, r.z * H_}));
-    }
-    p.tube.segments = 56;
-    p.tube.ring_spacing = spacing();
-    p.tube.cap_rings = 12;
+    const double bottom = height_(0.800);
+    Part p = upright_tube(rows, bottom, at("skull_tip").y(), 56, 12);
     const auto s_of = [&](const char* name) { return at(name).y() - bottom; };
     p.labels = {{0, joint("vt1")},
                 {s_of("vc7"), joint("vc7")},

@@ -4,6 +4,9 @@
 
 #include <embree3/rtcore.h>
 
+#include <Eigen/Core>
+#include <limits>
+
 namespace simcap {
 
 // Pixel block of a packet: 1x1, 2x2, 4x2 or 4x4.
@@ -18,6 +21,23 @@ template <int N>
 struct alignas(64) RayHitPacket : RTCRayHitNt<N> {};
 template <int N>
 struct alignas(64) RayPacket : RTCRayNt<N> {};
+
+// Lane k of a camera-ray packet starts at `origin` over [0, inf), sees every geometry and has
+// no hit yet; the caller sets its direction.
+template <int N>
+void start_camera_ray(RayHitPacket<N>& packet, int k, const Eigen::Vector3f& origin, unsigned id) {
+  packet.ray.org_x[k] = origin.x();
+  packet.ray.org_y[k] = origin.y();
+  packet.ray.org_z[k] = origin.z();
+  packet.ray.tnear[k] = 0.f;
+  packet.ray.tfar[k] = std::numeric_limits<float>::infinity();
+  packet.ray.time[k] = 0.f;
+  packet.ray.mask[k] = ~0u;
+  packet.ray.id[k] = id;
+  packet.ray.flags[k] = 0;
+  packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+  packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+}
 
 template <int N>
 void intersect_packet(const int* valid, RTCScene scene, RTCIntersectContext* context,

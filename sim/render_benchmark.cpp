@@ -102,17 +102,7 @@ RayCounts bare_embree_loop(RTCScene scene, const std::vector<CameraRays>& camera
                 packet.ray.dir_y[k] = block[CameraRays::kLanes + lane];
                 packet.ray.dir_z[k] = block[2 * CameraRays::kLanes + lane];
               }
-              packet.ray.org_x[k] = o.x();
-              packet.ray.org_y[k] = o.y();
-              packet.ray.org_z[k] = o.z();
-              packet.ray.tnear[k] = 0.f;
-              packet.ray.tfar[k] = std::numeric_limits<float>::infinity();
-              packet.ray.time[k] = 0.f;
-              packet.ray.mask[k] = ~0u;
-              packet.ray.id[k] = 0;
-              packet.ray.flags[k] = 0;
-              packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-              packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+              start_camera_ray(packet, k, o, 0);
               local.camera += valid[k] ? 1 : 0;
             }
             rtcInitIntersectContext(&context);

@@ -113,19 +113,7 @@ void Renderer::trace_camera_rays(const CameraRays& rays, int px, int py, int sam
     }
   }
   const Eigen::Vector3f o = rays.origin();
-  for (int k = 0; k < N; ++k) {
-    ray.org_x[k] = o.x();
-    ray.org_y[k] = o.y();
-    ray.org_z[k] = o.z();
-    ray.tnear[k] = 0.f;
-    ray.tfar[k] = kInf;
-    ray.time[k] = 0.f;
-    ray.mask[k] = ~0u;
-    ray.id[k] = static_cast<unsigned>(k);
-    ray.flags[k] = 0;
-    l.packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-    l.packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-  }
+  for (int k = 0; k < N; ++k) start_camera_ray(l.packet, k, o, static_cast<unsigned>(k));
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;

@@ -5,6 +5,7 @@
 #include <array>
 #include <vector>
 
+#include "tracker/ik_baseline_options.h"
 #include "tracker/sik_body.h"
 #include "tracker/sik_ik_solver.h"
 #include "tracker/sik_limits.h"
@@ -12,15 +13,7 @@
 
 namespace simcap {
 
-struct CcdOptions {
-  SikPelvisWeights pelvis_weights;
-  bool limits = true;
-  // The thesis' stopping rule: end-effector within 1 cm, or less than 1 mm gained by a sweep, or
-  // 20 sweeps.
-  double tolerance = 0.01;
-  double min_improvement = 0.001;
-  int max_iterations = 20;
-};
+using CcdOptions = IkBaselineOptions;
 
 class CcdSolver final : public IkSolver {
  public:

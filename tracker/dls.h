@@ -6,6 +6,7 @@
 #include <array>
 #include <vector>
 
+#include "tracker/ik_baseline_options.h"
 #include "tracker/sik_body.h"
 #include "tracker/sik_ik_solver.h"
 #include "tracker/sik_limits.h"
@@ -13,18 +14,13 @@
 
 namespace simcap {
 
-struct DlsOptions {
-  SikPelvisWeights pelvis_weights;
-  bool limits = true;
+struct DlsOptions : IkBaselineOptions {
   // The damping factor lambda of  dq = J^T (J J^T + lambda^2 I)^-1 e  is a length. The thesis
   // sets it "to 75" without a unit; read in centimetres, the unit its stopping rule is stated in
   // (1 cm, 1 mm), that is 0.75 m, which damps the slow directions of a body-sized Jacobian
   // (singular values of a few decimetres to a metre) as the thesis describes; in metres 75 would
   // freeze the body and in millimetres (0.075 m) barely damp it.
   double damping = 0.75;
-  double tolerance = 0.01;         // stop: every end-effector within 1 cm, ...
-  double min_improvement = 0.001;  // ... or the largest error improved by less than 1 mm, ...
-  int max_iterations = 20;         // ... or 20 iterations (the thesis' rule, as for CCD)
 };
 
 class DlsSolver final : public IkSolver {

@@ -98,18 +98,7 @@ std::string loop_summary_text(const LoopResult& r) {
 }
 
 void add_loop_options(CLI::App* cmd, LoopRun& run, LoopCliOptions& cli) {
-  cmd->add_option("--frames", run.render.frames,
-                  "Frames to render and track (unset: the whole motion)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--motion", run.render.motion_override,
-                  "BVH file that replaces the first actor's motion")
-      ->check(CLI::ExistingFile);
-  cli.seed_option =
-      cmd->add_option("--seed", cli.seed, "Render seed (default: the scene's render.seed)");
-  cmd->add_option("--set", run.render.overrides,
-                  "Scene override key.path=value, repeatable (e.g. --set rig.count=6)");
-  cmd->add_flag("--resume", run.render.resume,
-                "Keep the frames an interrupted run already rendered in OUT/dataset");
+  add_render_options(cmd, run.render, cli.seed);
   cmd->add_option("--method", run.track.method, "Tracker")->capture_default_str();
   cmd->add_option("--silhouettes", run.track.silhouettes,
                   "Silhouettes the tracker uses: gt (rendered masks), bgsub, mog2")
@@ -119,20 +108,13 @@ void add_loop_options(CLI::App* cmd, LoopRun& run, LoopCliOptions& cli) {
   cmd->add_option("--voxel", run.track.voxel_m, "Visual hull voxel size, metres")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--failure-threshold", run.validate.failure_threshold_mm,
-                  "A frame whose MPJPE is above this (mm) counts as a tracking failure")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
-  cmd->add_flag("--no-media", cli.no_media, "No overlay images or video in the report");
-  cmd->add_option("--fail-above", cli.fail_above_mm,
-                  "Exit with status 4 when the MPJPE is above this many mm (for CI)")
-      ->check(CLI::PositiveNumber);
+  add_scoring_options(cmd, run.validate, cli.scoring);
   cmd->add_flag("-q,--quiet", run.quiet, "No progress on stderr");
 }
 
 void finish_loop_options(LoopRun& run, const LoopCliOptions& cli) {
-  if (cli.seed_option && cli.seed_option->count() > 0) run.render.seed = cli.seed;
-  run.validate.media = !cli.no_media;
+  cli.seed.apply(run.render);
+  cli.scoring.apply(run.validate);
 }
 
 LoopRun loop_run_of(const LoopConfig& c, const fs::path& sweep_file, bool quiet) {

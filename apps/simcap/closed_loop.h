@@ -4,9 +4,9 @@
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
-#include <optional>
 #include <string>
 
+#include "apps/simcap/option_groups.h"
 #include "sim/render_job.h"
 #include "tracker/track_job.h"
 #include "validate/sweep_spec.h"
@@ -41,14 +41,11 @@ LoopResult run_closed_loop(const LoopRun& run, const std::filesystem::path& out)
 // The stage table (time, rate) and the headline metrics, then the report's path.
 std::string loop_summary_text(const LoopResult& result);
 
-// The options of `loop` that `demo` shares: render (--frames, --motion, --seed, --set, --resume),
-// track (--method, --silhouettes, --init, --voxel) and validate (--failure-threshold,
-// --no-media), plus --quiet. `seed` receives --seed; copy it into run.render.seed when given.
+// The options of `loop` that `demo` shares: the render and scoring groups (option_groups.h),
+// track (--method, --silhouettes, --init, --voxel) and --quiet.
 struct LoopCliOptions {
-  std::uint64_t seed = 0;
-  CLI::Option* seed_option = nullptr;
-  bool no_media = false;
-  std::optional<double> fail_above_mm;
+  SeedOption seed;
+  ScoringOptions scoring;
 };
 void add_loop_options(CLI::App* cmd, LoopRun& run, LoopCliOptions& cli);
 // Applies the parsed LoopCliOptions to `run`.

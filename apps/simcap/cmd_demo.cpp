@@ -32,7 +32,7 @@ int run_demo(DemoArgs& args) {
   }
   const LoopResult r = run_closed_loop(args.run, args.out);
   std::printf("%s", loop_summary_text(r).c_str());
-  return fail_above_status("demo", r.validate.evaluation.mpjpe_mm, args.cli.fail_above_mm);
+  return fail_above_status("demo", r.validate.evaluation.mpjpe_mm, args.cli.scoring.fail_above_mm);
 }
 
 }  // namespace

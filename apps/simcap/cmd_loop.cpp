@@ -17,7 +17,7 @@ int run_loop(LoopArgs& args) {
   finish_loop_options(args.run, args.cli);
   const LoopResult r = run_closed_loop(args.run, args.out);
   std::printf("%s", loop_summary_text(r).c_str());
-  return fail_above_status("loop", r.validate.evaluation.mpjpe_mm, args.cli.fail_above_mm);
+  return fail_above_status("loop", r.validate.evaluation.mpjpe_mm, args.cli.scoring.fail_above_mm);
 }
 
 }  // namespace

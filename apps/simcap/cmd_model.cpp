@@ -189,15 +189,18 @@ void add_model(CLI::App& app, Action& action) {
         ->check(CLI::Range(0.5, 2.6))
         ->capture_default_str();
   };
+  auto add_girth = [o](CLI::App* cmd) {
+    cmd->add_option("--girth", o->girth, "Body girth scale (1 = average adult)")
+        ->check(CLI::Range(0.5, 2.0))
+        ->capture_default_str();
+  };
 
   auto* i = model->add_subcommand(
       "info",
       "List joints and sites: segment, parent, neutral centre, bone length, DOFs; and "
       "the body mesh's size");
   add_height(i);
-  i->add_option("--girth", o->girth, "Body girth scale (1 = average adult)")
-      ->check(CLI::Range(0.5, 2.0))
-      ->capture_default_str();
+  add_girth(i);
   i->footer("Example:\n  simcap model info --height 1.62");
   i->callback([&action, o] { action = [o] { return info(*o); }; });
 
@@ -216,9 +219,7 @@ void add_model(CLI::App& app, Action& action) {
       "PLY or binary glTF, one part per material region");
   m->add_option("-o,--output", o->output, "Mesh file: .obj, .ply or .glb")->required();
   add_height(m);
-  m->add_option("--girth", o->girth, "Body girth scale (1 = average adult)")
-      ->check(CLI::Range(0.5, 2.0))
-      ->capture_default_str();
+  add_girth(m);
   auto* bvh = m->add_option("--bvh", o->bvh, "Pose from this BVH clip (retargeted)");
   m->add_option("--procedural", o->procedural,
                 "Pose from this procedural motion (stand, tpose, walk_in_place, walk_path, "

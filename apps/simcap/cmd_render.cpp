@@ -2,6 +2,7 @@
 #include <filesystem>
 
 #include "apps/simcap/commands.h"
+#include "apps/simcap/option_groups.h"
 #include "sim/render_job.h"
 
 namespace simcap::cli {
@@ -9,12 +10,12 @@ namespace {
 
 struct RenderArgs {
   std::filesystem::path scene, out;
-  std::uint64_t seed = 0;
   RenderOptions options;
+  SeedOption seed;
 };
 
-int run_render(RenderArgs& args, bool seed_given) {
-  if (seed_given) args.options.seed = args.seed;
+int run_render(RenderArgs& args) {
+  args.seed.apply(args.options);
   const RenderSummary s = render_dataset(args.scene, args.out, args.options);
   std::printf("simcap render: %d frames x %d cameras in %.1f s (%.1f frames/s) -> %s\n", s.frames,
               s.cameras, s.seconds, s.frames / s.seconds, s.dataset.string().c_str());
@@ -30,20 +31,7 @@ void add_render(CLI::App& app, Action& action) {
   static RenderArgs args;
   cmd->add_option("scene", args.scene, "Scene file (YAML; see scenes/README.md)")->required();
   cmd->add_option("-o,--output", args.out, "Dataset folder to write (new or empty)")->required();
-  cmd->add_option("--frames", args.options.frames,
-                  "Render this many frames (default: the whole motion)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--motion", args.options.motion_override,
-                  "BVH file that replaces the first actor's motion")
-      ->check(CLI::ExistingFile);
-  auto* seed = cmd->add_option("--seed", args.seed,
-                               "Seed of anti-aliasing jitter and sensor noise (default: the "
-                               "scene's render.seed)");
-  cmd->add_option("--set", args.options.overrides,
-                  "Scene override key.path=value, repeatable (e.g. --set rig.count=6)");
-  cmd->add_flag("--resume", args.options.resume,
-                "Continue an interrupted render in the output folder: frames whose files all "
-                "exist are kept");
+  add_render_options(cmd, args.options, args.seed);
   cmd->add_flag("--overwrite", args.options.overwrite,
                 "Replace the dataset already in the output folder");
   cmd->add_flag("-q,--quiet", args.options.quiet, "No progress on stderr");
@@ -54,8 +42,7 @@ void add_render(CLI::App& app, Action& action) {
       "  simcap render scenes/studio4.yaml -o out/studio4 --resume\n"
       "Writes scene.yaml, meta.json, calibration/, background/, camNN/{rgb,depth,mask,parts}/,\n"
       "parts.json and gt/{joints3d,joints2d,angles}.csv (layout: ARCHITECTURE.md).");
-  cmd->callback(
-      [&action, seed] { action = [seed] { return run_render(args, seed->count() > 0); }; });
+  cmd->callback([&action] { action = [] { return run_render(args); }; });
 }
 
 }  // namespace simcap::cli

@@ -1,9 +1,9 @@
 #include <cstdio>
 #include <filesystem>
-#include <optional>
 
 #include "apps/simcap/commands.h"
 #include "apps/simcap/fail_above.h"
+#include "apps/simcap/option_groups.h"
 #include "validate/summary_text.h"
 #include "validate/validate_job.h"
 
@@ -12,20 +12,19 @@ namespace {
 
 struct ValidateArgs {
   std::filesystem::path dataset, track, out;
-  std::optional<double> fail_above_mm;
-  bool no_media = false;
   ValidateOptions options;
+  ScoringOptions scoring;
 };
 
 int run_validate(const ValidateArgs& args) {
   ValidateOptions options = args.options;
-  options.media = !args.no_media;
+  args.scoring.apply(options);
   const ValidateSummary s = validate_dataset(args.dataset, args.track, args.out, options);
   std::printf("simcap validate: %s against %s\n%s", args.track.string().c_str(),
               args.dataset.string().c_str(), metrics_summary_text(s.evaluation).c_str());
   std::printf("report: %s\nmetrics: %s\n", s.report_html.string().c_str(),
               s.metrics_json.string().c_str());
-  return fail_above_status("validate", s.evaluation.mpjpe_mm, args.fail_above_mm);
+  return fail_above_status("validate", s.evaluation.mpjpe_mm, args.scoring.fail_above_mm);
 }
 
 }  // namespace
@@ -40,13 +39,7 @@ void add_validate(CLI::App& app, Action& action) {
       ->required();
   cmd->add_option("-o,--output", args.out, "Report folder (metrics.json, report.html, MP4)")
       ->required();
-  cmd->add_option("--fail-above", args.fail_above_mm,
-                  "Exit with status 4 when the MPJPE is above this many mm (for CI)")
-      ->check(CLI::PositiveNumber);
-  cmd->add_option("--failure-threshold", args.options.failure_threshold_mm,
-                  "A frame whose MPJPE is above this (mm) counts as a tracking failure")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+  add_scoring_options(cmd, args.options, args.scoring);
   cmd->add_option("--overlay-frames", args.options.overlay_frames,
                   "Frames drawn over every camera in the report (the worst one among them)")
       ->capture_default_str()
@@ -57,8 +50,6 @@ void add_validate(CLI::App& app, Action& action) {
                   "At most this many frames in the overlay video")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
-  cmd->add_flag("--no-media", args.no_media,
-                "Metrics only: no overlay images or video (the RGB frames are not read)");
   cmd->add_flag("-q,--quiet", args.options.quiet, "No progress on stderr");
   cmd->footer(
       "Exit status: 0 ok, 1 bad input, 4 MPJPE above --fail-above.\n"

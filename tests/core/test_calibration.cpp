@@ -11,13 +11,14 @@
 
 #include "core/atomic_file.h"
 #include "core/calibration.h"
-#include "core/error.h"
 #include "core/rig.h"
+#include "tests/support/error_of.h"
 #include "tests/support/temp_dir.h"
 
 namespace simcap {
 namespace {
 
+using simcap::testing::error_of;
 using simcap::testing::TempDir;
 
 std::vector<Camera> sample_rig() {
@@ -32,15 +33,6 @@ Eigen::MatrixXd read_mat(const cv::FileNode& n) {
   Eigen::MatrixXd out;
   cv::cv2eigen(m, out);
   return out;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "<no error>";
 }
 
 TEST(Calibration, OpenCVYamlIsReadableByFileStorage) {

@@ -2,8 +2,8 @@
 #include <gtest/gtest.h>
 
 #include "core/atomic_file.h"
-#include "core/error.h"
 #include "core/joint_track.h"
+#include "tests/support/error_of.h"
 #include "tests/support/temp_dir.h"
 
 namespace simcap {
@@ -28,12 +28,7 @@ TEST(JointTrack, RoundTrips) {
 std::string error_reading(const std::string& text) {
   TempDir dir;
   write_text_atomic(dir / "j.csv", text);
-  try {
-    read_joint_track(dir / "j.csv");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "<no error>";
+  return testing::error_of([&] { read_joint_track(dir / "j.csv"); });
 }
 
 TEST(JointTrack, BadInputNamesLineAndColumn) {

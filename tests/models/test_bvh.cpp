@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "models/bvh.h"
+#include "tests/support/error_of.h"
 
 namespace simcap {
 namespace {
@@ -147,14 +148,9 @@ TEST(Bvh, ShippedWalkIsTheCmuClip) {
   EXPECT_EQ(shipped.values, shared.values);
 }
 
-// Returns the message of the Error that parsing `text` throws (empty if none).
+// The message of the Error that parsing `text` throws.
 std::string error_of(const std::string& text) {
-  try {
-    parse_bvh(text, "bad.bvh");
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
+  return testing::error_of([&] { parse_bvh(text, "bad.bvh"); });
 }
 
 std::string replace(std::string text, const std::string& from, const std::string& to) {

@@ -14,21 +14,14 @@
 #include "models/joint_limits.h"
 #include "models/pose.h"
 #include "models/urdf_io.h"
+#include "tests/support/error_of.h"
 #include "tests/support/temp_dir.h"
 
 namespace simcap {
 namespace {
 
+using testing::error_of;
 using testing::TempDir;
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 TEST(Urdf, CheckUrdfAcceptsTheFile) {
   TempDir dir;

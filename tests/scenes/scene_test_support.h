@@ -11,6 +11,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "scenes/scene.h"
+#include "tests/support/error_of.h"
 
 namespace simcap::testing {
 
@@ -24,12 +25,7 @@ inline std::filesystem::path write_scene(const std::filesystem::path& dir, const
 // The Error message of load_scene, or "<no error>".
 inline std::string load_error(const std::filesystem::path& path,
                               const std::vector<std::string>& overrides = {}) {
-  try {
-    load_scene(path, overrides);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "<no error>";
+  return error_of([&] { load_scene(path, overrides); });
 }
 
 inline void expect_cameras_equal(const Camera& a, const Camera& b, double tol) {

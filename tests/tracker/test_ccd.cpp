@@ -3,21 +3,16 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <random>
 
 #include "models/humanoid.h"
 #include "models/motion_source.h"
+#include "tests/tracker/ik_solver_checks.h"
 #include "tracker/ccd.h"
 
 namespace simcap {
 namespace {
 
-std::vector<Eigen::Vector3d> positions(const SikBody& body, const Pose& pose) {
-  std::vector<Eigen::Quaterniond> r;
-  std::vector<Eigen::Vector3d> p;
-  body.forward(pose, r, p);
-  return p;
-}
+using testing::world_positions;
 
 TEST(Ccd, FollowsAWalkWithinItsTolerance) {
   const Skeleton skeleton = build_humanoid();
@@ -28,8 +23,8 @@ TEST(Ccd, FollowsAWalkWithinItsTolerance) {
   CcdSolver solver(body);
   std::vector<double> errors;
   for (const Pose& truth : motion.frames) {
-    const SikTargets t = body.targets(positions(body, truth));
-    const auto p = positions(body, solver.solve(t));
+    const SikTargets t = body.targets(world_positions(body, truth));
+    const auto p = world_positions(body, solver.solve(t));
     for (int side : {kLeft, kRight}) {
       errors.push_back((p[body.arm(side).c] - t.wrist[side]).norm());
       errors.push_back((p[body.leg(side).c] - t.ankle[side]).norm());
@@ -46,27 +41,14 @@ TEST(Ccd, FollowsAWalkWithinItsTolerance) {
 TEST(Ccd, KeepsHingesAndLimits) {
   const SikBody body(build_humanoid());
   const SikLimits limits(body);
-  const auto rest = positions(body, Pose::neutral(body.skeleton()));
-  const SikTargets neutral = body.targets(rest);
   CcdSolver solver(body);
-  std::mt19937 rng(2);
-  std::uniform_real_distribution<double> coord(-0.8, 0.8);
-  for (int i = 0; i < 300; ++i) {
-    SikTargets t = neutral;
-    for (int side : {kLeft, kRight}) {
-      t.wrist[side] = neutral.pelvis + Eigen::Vector3d(coord(rng), coord(rng), coord(rng));
-      t.ankle[side] = neutral.pelvis + Eigen::Vector3d(coord(rng), coord(rng) - 0.5, coord(rng));
-    }
-    const Pose& pose = solver.solve(t);
-    for (int j = 0; j < body.size(); ++j) {
-      EXPECT_LT(limits.excess(j, pose.rotations[j]), 1e-9) << body.skeleton()[j].name;
-    }
-  }
+  testing::expect_within_limits(solver, 2, 300);
   // Without limits the elbows and knees still turn about their hinge axes only.
+  const auto rest = world_positions(body, Pose::neutral(body.skeleton()));
   CcdOptions free;
   free.limits = false;
   CcdSolver unlimited(body, free);
-  SikTargets t = neutral;
+  SikTargets t = body.targets(rest);
   t.wrist[kLeft] = rest[body.arm(kLeft).a] + Eigen::Vector3d(0.1, 0.1, 0.3);
   const Pose& pose = unlimited.solve(t);
   const int elbow = body.arm(kLeft).b;

@@ -2,24 +2,18 @@
 // light damping it converges on a walking humanoid's end-effectors.
 #include <gtest/gtest.h>
 
-#include <random>
-
 #include "models/humanoid.h"
 #include "models/motion_source.h"
+#include "tests/tracker/ik_solver_checks.h"
 #include "tracker/dls.h"
 
 namespace simcap {
 namespace {
 
-std::vector<Eigen::Vector3d> positions(const SikBody& body, const Pose& pose) {
-  std::vector<Eigen::Quaterniond> r;
-  std::vector<Eigen::Vector3d> p;
-  body.forward(pose, r, p);
-  return p;
-}
+using testing::world_positions;
 
 double largest_error(const SikBody& body, const Pose& pose, const SikTargets& t) {
-  const auto p = positions(body, pose);
+  const auto p = world_positions(body, pose);
   double worst = (p[body.head()] - t.head).norm();
   for (int side : {kLeft, kRight}) {
     worst = std::max(worst, (p[body.arm(side).c] - t.wrist[side]).norm());
@@ -32,7 +26,7 @@ class DlsTest : public ::testing::Test {
  protected:
   Skeleton skeleton = build_humanoid();
   SikBody body{skeleton};
-  std::vector<Eigen::Vector3d> rest = positions(body, Pose::neutral(skeleton));
+  std::vector<Eigen::Vector3d> rest = world_positions(body, Pose::neutral(skeleton));
   SikTargets neutral = body.targets(rest);
   // An arm raised forward: reachable, 30 cm from where the neutral wrist is.
   SikTargets reach() const {
@@ -72,7 +66,7 @@ TEST_F(DlsTest, ConvergesOnAWalkWithLightDamping) {
   DlsSolver solver(body, o);
   int converged = 0;
   for (const Pose& truth : motion.frames) {
-    const SikTargets t = body.targets(positions(body, truth));
+    const SikTargets t = body.targets(world_positions(body, truth));
     converged += largest_error(body, solver.solve(t), t) < 0.01;
   }
   EXPECT_GT(converged, 0.9 * motion.frames.size());
@@ -80,20 +74,7 @@ TEST_F(DlsTest, ConvergesOnAWalkWithLightDamping) {
 
 TEST_F(DlsTest, NeverLeavesTheLimits) {
   DlsSolver solver(body);
-  const SikLimits limits(body);
-  std::mt19937 rng(4);
-  std::uniform_real_distribution<double> coord(-0.8, 0.8);
-  for (int i = 0; i < 200; ++i) {
-    SikTargets t = neutral;
-    for (int side : {kLeft, kRight}) {
-      t.wrist[side] = neutral.pelvis + Eigen::Vector3d(coord(rng), coord(rng), coord(rng));
-      t.ankle[side] = neutral.pelvis + Eigen::Vector3d(coord(rng), coord(rng) - 0.5, coord(rng));
-    }
-    const Pose& pose = solver.solve(t);
-    for (int j = 0; j < body.size(); ++j) {
-      EXPECT_LT(limits.excess(j, pose.rotations[j]), 1e-9) << skeleton[j].name;
-    }
-  }
+  testing::expect_within_limits(solver, 4, 200);
 }
 
 }  // namespace

@@ -2,13 +2,13 @@
 // sweep run through a stand-in closed loop (so that the test needs neither renderer nor tracker).
 #include <gtest/gtest.h>
 
-#include <functional>
 #include <pugixml.hpp>
 
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/error.h"
 #include "models/humanoid.h"
+#include "tests/support/error_of.h"
 #include "tests/support/temp_dir.h"
 #include "validate/sweep.h"
 
@@ -16,16 +16,8 @@ namespace simcap {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::error_of;
 using testing::TempDir;
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "<no error>";
-}
 
 // A sweep file next to an (empty) scene file, which is all that load_sweep looks at.
 fs::path write_sweep(const TempDir& dir, const std::string& text) {

@@ -8,7 +8,7 @@
 #include <pugixml.hpp>
 
 #include "core/atomic_file.h"
-#include "core/error.h"
+#include "tests/support/error_of.h"
 #include "tests/support/temp_dir.h"
 #include "tests/validate/synthetic_dataset.h"
 #include "validate/validate_job.h"
@@ -17,6 +17,7 @@ namespace simcap {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::error_of;
 using testing::TempDir;
 using testing::write_synthetic_dataset;
 using testing::write_track;
@@ -24,15 +25,6 @@ using testing::write_track;
 const auto kShift = [](int, const std::string&, const Eigen::Vector3d& p) {
   return Eigen::Vector3d(p + Eigen::Vector3d(0.03, 0.04, 0.0));
 };
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "<no error>";
-}
 
 ValidateOptions quiet_options() {
   ValidateOptions o;

@@ -1,0 +1,36 @@
+#include "apps/simcap/option_groups.h"
+
+namespace simcap::cli {
+
+void SeedOption::apply(RenderOptions& options) const {
+  if (option && option->count() > 0) options.seed = value;
+}
+
+void add_render_options(CLI::App* cmd, RenderOptions& options, SeedOption& seed) {
+  cmd->add_option("--frames", options.frames, "Frames to render (unset: the whole motion)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--motion", options.motion_override,
+                  "BVH file that replaces the first actor's motion")
+      ->check(CLI::ExistingFile);
+  seed.option = cmd->add_option(
+      "--seed", seed.value,
+      "Seed of anti-aliasing jitter and sensor noise (default: the scene's render.seed)");
+  cmd->add_option("--set", options.overrides,
+                  "Scene override key.path=value, repeatable (e.g. --set rig.count=6)");
+  cmd->add_flag("--resume", options.resume,
+                "Continue an interrupted render: frames whose files all exist are kept");
+}
+
+void add_scoring_options(CLI::App* cmd, ValidateOptions& options, ScoringOptions& scoring) {
+  cmd->add_option("--failure-threshold", options.failure_threshold_mm,
+                  "A frame whose MPJPE is above this (mm) counts as a tracking failure")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--no-media", scoring.no_media,
+                "Metrics only: no overlay images or video (the RGB frames are not read)");
+  cmd->add_option("--fail-above", scoring.fail_above_mm,
+                  "Exit with status 4 when the MPJPE is above this many mm (for CI)")
+      ->check(CLI::PositiveNumber);
+}
+
+}  // namespace simcap::cli
