@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "tracker/silhouette_view.h"
 #include "tracker/stick_model.h"
 #include "tracker/visual_hull.h"
 
@@ -28,6 +29,8 @@ struct IcpTargets {
   // Unlike the hull's surface, they carry no phantom volume (the parts of the hull that no
   // camera can see empty), so they are what finally places the limbs.
   std::vector<SilhouetteRay> rays;
+  // The silhouettes themselves: the capsules' outlines must project inside each of them.
+  const std::vector<SilhouetteView>* views = nullptr;
 };
 
 // Closest point on any stick's centerline: the clamped projection onto each (Fig. 4.3-4.4).

@@ -28,6 +28,7 @@ IcpTargets MoschiniTracker::targets_of(const Observation& obs) {
   t.hull = &obs.hull;
   t.surface = obs.surface;
   t.rays = obs.rays;
+  t.views = &obs.views;
   return t;
 }
 

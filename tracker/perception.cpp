@@ -56,6 +56,9 @@ Observation Perception::observe(int frame, bool compare_masks) const {
       }
     }
   }
+  if (options_.views) {
+    for (int c = 0; c < nc; ++c) obs.views.emplace_back(dataset_->cameras()[c], silhouettes[c]);
+  }
   obs.silhouettes_ms = ms_since(t);
   t = Clock::now();
   hull_.carve(silhouettes, obs.hull);

@@ -21,6 +21,7 @@ struct PerceptionOptions {
   int surface_stride = 5;
   // Silhouette pixels on a grid of this many pixels become rays for the fit; 0 = none.
   int ray_stride = 4;
+  bool views = true;  // nearest-silhouette-pixel maps for the fit
 };
 
 struct Observation {
@@ -30,6 +31,7 @@ struct Observation {
   std::vector<Eigen::Vector3d> points;   // centerline positions, for ICP
   std::vector<Eigen::Vector3d> surface;  // hull surface voxels (a subsample), for ICP
   std::vector<SilhouetteRay> rays;       // through silhouette pixels on the ray grid
+  std::vector<SilhouetteView> views;     // per camera, when PerceptionOptions::views
   std::vector<double> silhouette_iou;    // per camera vs the dataset's masks, when asked for
   double silhouettes_ms = 0, hull_ms = 0, centerline_ms = 0;
 };

@@ -208,7 +208,7 @@ namespace {
 
 // One pass of measure_radii: every ray goes to the part it passes most inside of, given the
 // radii so far (nearest axis alone would hand the torso's edge rays to an arm hanging beside it).
-void measure_radii_once(BodyDimensions& dims, const StickGeometry& g,
+void measure_radii_once(BodyDimensions& dims, const BodyDimensions& typical, const StickGeometry& g,
                         const std::vector<SilhouetteRay>& rays) {
   // A ray that meets a cylinder of radius r passes its axis at a distance uniform in [0, r] (the
   // silhouette pixels are a uniform grid), so r is twice the median: the median shrugs off the
@@ -243,7 +243,14 @@ void measure_radii_once(BodyDimensions& dims, const StickGeometry& g,
     std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
     return 2 * v[v.size() / 2];
   };
-  for (int s = 0; s < kSegmentCount; ++s) dims.radius[s] = twice_median(d[s]);
+  // A part that few rays reach, or a pose far enough off to hand it another part's rays, keeps
+  // (or stays near) its typical radius: a measurement outside [0.6, 1.6] of it is not trusted.
+  auto plausible = [](double measured, double prior) {
+    return measured > 0 ? std::clamp(measured, 0.6 * prior, 1.6 * prior) : prior;
+  };
+  for (int s = 0; s < kSegmentCount; ++s) {
+    dims.radius[s] = plausible(twice_median(d[s]), typical.radius[s]);
+  }
   // The torso's reach h across its axis in direction (cos φ, sin φ) is the ellipse's support
   // function, h² = a² cos² φ + b² sin² φ: least squares for a² (half-width) and b² (depth).
   Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
@@ -256,28 +263,35 @@ void measure_radii_once(BodyDimensions& dims, const StickGeometry& g,
     A += row * row.transpose();
     y += row * h * h;
   }
-  dims.torso_width = dims.radius[kTorso];
+  dims.torso_width = plausible(dims.radius[kTorso], typical.torso_width);
   if (std::abs(A.determinant()) > 1e-9) {
     const Eigen::Vector2d ab2 = A.ldlt().solve(y);
     if (ab2.x() > 0 && ab2.y() > 0) {
-      dims.torso_width = std::sqrt(ab2.x());
-      dims.radius[kTorso] = std::sqrt(ab2.y());
+      dims.torso_width = plausible(std::sqrt(ab2.x()), typical.torso_width);
+      dims.radius[kTorso] = plausible(std::sqrt(ab2.y()), typical.radius[kTorso]);
     }
   }
 }
 
 }  // namespace
 
-void measure_radii(BodyDimensions& dims, JointSet joints, const StickPose& pose,
-                   const std::vector<SilhouetteRay>& rays) {
-  const StickGeometry g = StickModel(dims, joints).geometry(pose);
-  // Start from typical proportions of each part's length, then reassign and remeasure.
+void set_typical_radii(BodyDimensions& dims) {
   dims.radius = {0.6 * dims.shoulder_half, 0.3 * dims.head,       0.14 * dims.upper_arm,
                  0.09 * dims.forearm,      0.14 * dims.upper_arm, 0.09 * dims.forearm,
                  0.17 * dims.thigh,        0.13 * dims.calf,      0.17 * dims.thigh,
                  0.13 * dims.calf};
-  dims.torso_width = dims.shoulder_half;
-  for (int pass = 0; pass < 3; ++pass) measure_radii_once(dims, g, rays);
+  dims.torso_width = 0.8 * dims.shoulder_half;
+}
+
+void measure_radii(BodyDimensions& dims, JointSet joints, const StickPose& pose,
+                   const std::vector<SilhouetteRay>& rays) {
+  const StickGeometry g = StickModel(dims, joints).geometry(pose);
+  BodyDimensions typical = dims;
+  set_typical_radii(typical);
+  dims.radius = typical.radius;
+  dims.torso_width = typical.torso_width;
+  // Each pass reassigns the rays with the radii of the one before.
+  for (int pass = 0; pass < 3; ++pass) measure_radii_once(dims, typical, g, rays);
 }
 
 BodyDimensions dimensions_from_height(double height_m) {
@@ -291,6 +305,7 @@ BodyDimensions dimensions_from_height(double height_m) {
       dimensions_from_joints(joints, "humanoid of height " + std::to_string(height_m));
   d.d_s = 0.8;
   d.d_h = 0.7;
+  set_typical_radii(d);
   return d;
 }
 

@@ -37,15 +37,21 @@ StickPose pose_from_joints(const StickModel& model, const NamedJoints& joints,
 std::array<Eigen::Vector3d, kSegmentCount> measure_centerline_offsets(
     const StickModel& model, const StickPose& pose, const std::vector<Eigen::Vector3d>& points);
 
+// Radii and torso width in typical proportion to the sticks' lengths (an adult's limbs and
+// trunk), the fallback where rays cannot measure them.
+void set_typical_radii(BodyDimensions& dims);
+
 // Radius of each stick's body part on a frame whose pose is known, from the silhouette rays
 // passing through its middle; for the torso its depth and half-width (an ellipse fitted to its
-// reach across the axis in six directions; round when they do not determine it). Sets
-// dims.radius and dims.torso_width.
+// reach across the axis in six directions; round when they do not determine it). A part
+// that the rays cannot measure keeps its typical radius, and no measurement strays beyond
+// [0.6, 1.6] of it. Sets dims.radius and dims.torso_width.
 void measure_radii(BodyDimensions& dims, JointSet joints, const StickPose& pose,
                    const std::vector<SilhouetteRay>& rays);
 
 // Dimensions for a person of `height_m`: simcap's humanoid (Drillis-Contini proportions)
-// scaled to that height, with Table 5.3's d_s = 0.8 and d_H = 0.7 for the torso.
+// scaled to that height, with Table 5.3's d_s = 0.8 and d_H = 0.7 for the torso and typical
+// radii.
 BodyDimensions dimensions_from_height(double height_m);
 
 // What the hull says about a person standing upright on the floor y = 0.

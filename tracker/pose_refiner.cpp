@@ -148,6 +148,67 @@ bool surface_distance(const StickGeometry& g, const BodyDimensions& dims, int s,
   return true;
 }
 
+// The rim residuals of one camera's view: points on each capsule's outline as that camera sees
+// it, pulled towards the nearest silhouette pixel when they project outside.
+void add_rim(const SilhouetteView& view, const StickGeometry& g, const BodyDimensions& dims,
+             const RefineOptions& options, double w2, Normal& normal) {
+  const Camera& cam = view.camera();
+  const Eigen::Vector3d centre = cam.centre();
+  for (int s = 0; s < kSegmentCount; ++s) {
+    if (dims.radius[s] <= 0) continue;
+    const Eigen::Vector3d ab = g.line_distal[s] - g.line_proximal[s];
+    const Eigen::Vector3d axis = ab.normalized();
+    const int n = std::max(2, static_cast<int>(ab.norm() / options.rim_step_m));
+    for (int i = 0; i < n; ++i) {
+      const Eigen::Vector3d x = g.line_proximal[s] + (i + 0.5) / n * ab;
+      // The outline of a cylinder seen from `centre` runs across both the axis and the view.
+      const Eigen::Vector3d across = axis.cross(x - centre).normalized();
+      double reach = dims.radius[s];
+      if (s == kTorso && dims.torso_width > 0) {
+        const Eigen::Vector3d a = g.rotation[kTorso].transpose() * across;
+        reach = std::hypot(dims.torso_width * a.x(), dims.radius[kTorso] * a.z());
+      }
+      for (const double side : {-1.0, 1.0}) {
+        const Eigen::Vector3d p = x + side * reach * across;
+        const Eigen::Vector3d pc = cam.to_camera(p);
+        const Eigen::Vector2d px = cam.project_camera(pc);
+        const int u = static_cast<int>(std::lround(px.x())),
+                  v = static_cast<int>(std::lround(px.y()));
+        if (pc.z() <= 0 || u < 0 || v < 0 || u >= cam.width || v >= cam.height ||
+            view.inside(u, v)) {
+          normal.add_zero();
+          continue;
+        }
+        // Pulled towards the nearest silhouette pixel, at the point's own depth.
+        const Eigen::Vector2i near = view.nearest(u, v);
+        const Eigen::Vector3d dir = cam.unproject_camera(near.cast<double>());
+        const Eigen::Vector3d target = cam.to_world(dir * (pc.z() / dir.z()));
+        normal.add(normal.jacobian(s, p), target - p, w2);
+      }
+    }
+  }
+}
+
+// Bounding spheres of the capsules: a sphere bounds its capsule's signed distance from below,
+// so a part whose sphere is farther than the best distance found so far needs no exact test
+// (most points and rays lie deep inside one part).
+struct CapsuleBounds {
+  CapsuleBounds(const StickGeometry& g, const BodyDimensions& dims) {
+    for (int s = 0; s < kSegmentCount; ++s) {
+      centre[s] = 0.5 * (g.line_proximal[s] + g.line_distal[s]);
+      const double reach =
+          s == kTorso ? std::max(dims.radius[s], dims.torso_width) : dims.radius[s];
+      bound[s] = 0.5 * (g.line_distal[s] - g.line_proximal[s]).norm() + reach;
+    }
+  }
+  double below(int s, const Eigen::Vector3d& x) const { return (x - centre[s]).norm() - bound[s]; }
+  double below(int s, const SilhouetteRay& ray) const {
+    return (centre[s] - ray.origin).cross(ray.direction).norm() - bound[s];
+  }
+  std::array<Eigen::Vector3d, kSegmentCount> centre;
+  std::array<double, kSegmentCount> bound{};
+};
+
 }  // namespace
 
 PoseRefiner::PoseRefiner(const StickModel& model, const RefineOptions& options)
@@ -201,6 +262,7 @@ PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
   }
   // Surface voxels: the capsule they lie nearest to, X84 inliers on the distance.
   const BodyDimensions& dims = model_->dimensions();
+  const CapsuleBounds bounds(g, dims);
   if (!targets.surface.empty() && options_.surface_weight > 0) {
     std::vector<int> owner(targets.surface.size(), -1);
     std::vector<double> magnitude(targets.surface.size());
@@ -208,8 +270,8 @@ PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
       double best = std::numeric_limits<double>::infinity(), d;
       Eigen::Vector3d dir;
       for (int s = 0; s < kSegmentCount; ++s) {
-        if (dims.radius[s] > 0 && surface_distance(g, dims, s, targets.surface[i], &d, &dir) &&
-            d < best) {
+        if (dims.radius[s] > 0 && bounds.below(s, targets.surface[i]) < best &&
+            surface_distance(g, dims, s, targets.surface[i], &d, &dir) && d < best) {
           best = d;
           owner[i] = s;
         }
@@ -228,11 +290,13 @@ PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
   // pulls a limb into place; only misses beyond any limb's reach are dropped.
   if (!targets.rays.empty() && options_.ray_weight > 0) {
     for (size_t i = 0; i < targets.rays.size(); ++i) {
+      const SilhouetteRay& ray = targets.rays[i];
       double best = std::numeric_limits<double>::infinity(), d;
       int owner = -1;
       Eigen::Vector3d dir;
       for (int s = 0; s < kSegmentCount; ++s) {
         if (dims.radius[s] <= 0) continue;
+        if (bounds.below(s, ray) >= best) continue;
         const Eigen::Vector3d q =
             nearest_on_ray(targets.rays[i], g.line_proximal[s], g.line_distal[s]);
         if (surface_distance(g, dims, s, q, &d, &dir) && d < best) best = d, owner = s;
@@ -300,6 +364,12 @@ double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
       continue;
     }
     normal.add_scalar(normal.jacobian(s, q - e * dir), -dir, e, wr2);
+  }
+  if (targets.views && options_.rim_weight > 0) {
+    const double w2 = options_.rim_weight * options_.rim_weight;
+    for (const SilhouetteView& view : *targets.views) {
+      if (!view.empty()) add_rim(view, g, model_->dimensions(), options_, w2, normal);
+    }
   }
   auto prior = [&](std::initializer_list<int> angles, double slope) {
     if (slope <= 0) return;

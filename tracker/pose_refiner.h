@@ -24,7 +24,11 @@ struct RefineOptions {
   // Per silhouette ray, on its distance outside the nearest capsule (0 when a capsule meets it).
   double ray_weight = 1.0;
   double ray_max_miss_m = 0.6;  // rays passing farther from every capsule are left out
-  double foot_start = 0.9;      // rays nearest a calf beyond this fraction of it meet a foot
+  // Per point sampled every `rim_step_m` along each capsule's outline as each camera sees it, on
+  // its distance outside that camera's silhouette (0 inside).
+  double rim_weight = 1.0;
+  double rim_step_m = 0.04;
+  double foot_start = 0.9;  // rays nearest a calf beyond this fraction of it meet a foot
   // A weak prior towards the neutral pose on hip abduction and twist, as a residual of this
   // many metres per radian: people walk and stand with their legs swinging fore and aft. A
   // torso turned away from the true heading must spread the legs sideways to reach their data,
