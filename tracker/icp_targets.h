@@ -31,6 +31,10 @@ struct IcpTargets {
   std::vector<SilhouetteRay> rays;
   // The silhouettes themselves: the capsules' outlines must project inside each of them.
   const std::vector<SilhouetteView>* views = nullptr;
+  // Where the motion model expects the body (the previous estimate): when set, the fit pays
+  // for moving away from it (RefineOptions::motion_prior_m_per_rad), also when hypotheses are
+  // compared, so that a limb does not jump to another place that explains the data as well.
+  const StickPose* prediction = nullptr;
 };
 
 // Closest point on any stick's centerline: the clamped projection onto each (Fig. 4.3-4.4).

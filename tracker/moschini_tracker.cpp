@@ -133,7 +133,9 @@ TrackStep MoschiniTracker::step(const Observation& obs) {
   auto t = Clock::now();
   StickPose measured = pose_;
   if (!obs.points.empty()) {
-    const IcpTargets targets = targets_of(obs);
+    IcpTargets targets = targets_of(obs);
+    const StickPose prediction = pose_;
+    targets.prediction = &prediction;
     // Two hypotheses: Moschini's traversal, which can jump to where the centerline now is, and
     // the joint refinement alone from the previous pose, which cannot be led astray by a limb
     // whose centroids merged with another part's.

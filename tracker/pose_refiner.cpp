@@ -394,7 +394,7 @@ double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
 }
 
 double PoseRefiner::cost(const IcpTargets& targets, const StickPose& pose) const {
-  return evaluate(targets, associate(targets, pose), pose, nullptr, nullptr, nullptr);
+  return evaluate(targets, associate(targets, pose), pose, targets.prediction, nullptr, nullptr);
 }
 
 void PoseRefiner::refine(const IcpTargets& targets, StickPose& pose) const {
@@ -405,7 +405,7 @@ void PoseRefiner::refine(const IcpTargets& targets, StickPose& pose) const {
   // step is retried, up to 10 times: one-sided ray residuals make the first Gauss-Newton model
   // optimistic far from the data) after one that does not.
   double lambda = options_.damping;
-  const StickPose start = pose;
+  const StickPose start = targets.prediction ? *targets.prediction : pose;
   for (int it = 0; it < options_.iterations; ++it) {
     Eigen::MatrixXd H = Eigen::MatrixXd::Zero(np, np);
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(np);

@@ -35,9 +35,10 @@ struct RefineOptions {
   // so the prior turns the torso back (its heading is otherwise barely observed: 4 corner views
   // give a near-round hull around a torso, and the arms often merge with it).
   double leg_prior_m_per_rad = 0.3;
-  // A weak pull of every parameter towards where the refinement started (the prediction), as
-  // this many metres per radian (and per metre for the torso's translation): directions the
-  // data barely observe then stay put instead of drifting a little further on every frame.
+  // A pull of every parameter towards the prediction (IcpTargets::prediction, else where the
+  // refinement started), as this many metres per radian (and per metre for the torso's
+  // translation): directions the data barely observe then stay put instead of drifting, and a
+  // limb hidden against the torso does not jump to another hidden place.
   double motion_prior_m_per_rad = 0.05;
 };
 
