@@ -85,7 +85,7 @@ TEST(ShippedScenes, NothingElseIsShippedUntested) {
 
 TEST(ShippedScenes, Studio4IsTheDocumentedDefault) {
   const Scene s = load_scene(shipped_scene_path("studio4"));
-  EXPECT_EQ(s.room.size, Eigen::Vector3d(4, 3, 4));
+  EXPECT_EQ(s.room.size, Eigen::Vector3d(5, 3, 5));
   ASSERT_EQ(s.cameras.size(), 4u);
   for (const Camera& cam : s.cameras) {
     SCOPED_TRACE(cam.name);
@@ -93,8 +93,8 @@ TEST(ShippedScenes, Studio4IsTheDocumentedDefault) {
     EXPECT_EQ(cam.height, 480);
     const Eigen::Vector3d c = cam.centre();
     EXPECT_NEAR(c.y(), 2.5, 1e-12);
-    EXPECT_GT(std::abs(c.x()), 1.5);  // in a corner of the 4 m x 4 m room
-    EXPECT_GT(std::abs(c.z()), 1.5);
+    EXPECT_GT(std::abs(c.x()), 2.0);  // in a corner of the 5 m x 5 m room
+    EXPECT_GT(std::abs(c.z()), 2.0);
     // The optical axis passes through the room centre at 1 m height.
     const Eigen::Vector3d at = cam.to_camera({0, 1, 0});
     EXPECT_NEAR(at.x(), 0, 1e-9);
