@@ -1,5 +1,5 @@
 // What the articulated fit registers the stick model to on one frame: Moschini's centerline
-// points, plus the hull cues simcap adds (surface voxels, containment).
+// points, plus the cues simcap adds (hull containment, silhouette rays and outlines).
 #pragma once
 
 #include <Eigen/Core>
@@ -22,11 +22,8 @@ struct IcpTargets {
   // with the other limb yields no centerline points, and data-to-model matching alone lets it
   // wander off through empty space to explain a few stray points.
   const Occupancy* hull = nullptr;
-  // Hull surface voxels (a subsample), fitted by the sticks as capsules of
-  // BodyDimensions::radius: where a limb's centroids vanish, its bulge in the surface remains.
-  std::vector<Eigen::Vector3d> surface;
   // Rays from each camera through a grid of its silhouette pixels: every one must meet the body.
-  // Unlike the hull's surface, they carry no phantom volume (the parts of the hull that no
+  // Unlike the hull, they carry no phantom volume (the parts of the hull that no
   // camera can see empty), so they are what finally places the limbs.
   std::vector<SilhouetteRay> rays;
   // The silhouettes themselves: the capsules' outlines must project inside each of them.

@@ -26,7 +26,6 @@ IcpTargets MoschiniTracker::targets_of(const Observation& obs) {
   IcpTargets t;
   t.points = obs.points;
   t.hull = &obs.hull;
-  t.surface = obs.surface;
   t.rays = obs.rays;
   t.views = &obs.views;
   return t;

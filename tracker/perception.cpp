@@ -67,24 +67,6 @@ Observation Perception::observe(int frame, bool compare_masks) const {
   obs.centerline = centerline(obs.hull, options_.skeleton);
   obs.points.reserve(obs.centerline.size());
   for (const CenterlinePoint& p : obs.centerline) obs.points.push_back(p.position);
-  if (options_.surface_stride > 0) {
-    // Occupied cells with an empty (or out-of-box) face neighbour, every n-th by (x + y + z).
-    const Occupancy& h = obs.hull;
-    const int sx = h.size.x(), sy = h.size.y(), sz = h.size.z();
-    const size_t row = static_cast<size_t>(sx), plane = static_cast<size_t>(sx) * sz;
-    for (int y = 0; y < sy; ++y) {
-      for (int z = 0; z < sz; ++z) {
-        const std::uint8_t* c = h.cells.data() + y * plane + z * row;
-        for (int x = 0; x < sx; ++x) {
-          if (!c[x] || (x + y + z) % options_.surface_stride != 0) continue;
-          const bool inner = x > 0 && x < sx - 1 && y > 0 && y < sy - 1 && z > 0 && z < sz - 1 &&
-                             c[x - 1] && c[x + 1] && c[x - row] && c[x + row] && c[x - plane] &&
-                             c[x + plane];
-          if (!inner) obs.surface.push_back(h.grid.center(h.lo + Eigen::Vector3i(x, y, z)));
-        }
-      }
-    }
-  }
   obs.centerline_ms = ms_since(t);
   return obs;
 }

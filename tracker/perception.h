@@ -17,8 +17,6 @@ struct PerceptionOptions {
   HullOptions hull;
   SkeletonOptions skeleton;
   SilhouetteOptions silhouettes;
-  // Every n-th surface voxel (by (x + y + z) mod n) goes to ICP; 0 = none.
-  int surface_stride = 5;
   // Silhouette pixels on a grid of this many pixels become rays for the fit; 0 = none.
   int ray_stride = 4;
   bool views = true;  // nearest-silhouette-pixel maps for the fit
@@ -28,11 +26,10 @@ struct Observation {
   int frame = 0;
   Occupancy hull;
   std::vector<CenterlinePoint> centerline;
-  std::vector<Eigen::Vector3d> points;   // centerline positions, for ICP
-  std::vector<Eigen::Vector3d> surface;  // hull surface voxels (a subsample), for ICP
-  std::vector<SilhouetteRay> rays;       // through silhouette pixels on the ray grid
-  std::vector<SilhouetteView> views;     // per camera, when PerceptionOptions::views
-  std::vector<double> silhouette_iou;    // per camera vs the dataset's masks, when asked for
+  std::vector<Eigen::Vector3d> points;  // centerline positions, for ICP
+  std::vector<SilhouetteRay> rays;      // through silhouette pixels on the ray grid
+  std::vector<SilhouetteView> views;    // per camera, when PerceptionOptions::views
+  std::vector<double> silhouette_iou;   // per camera vs the dataset's masks, when asked for
   double silhouettes_ms = 0, hull_ms = 0, centerline_ms = 0;
 };
 

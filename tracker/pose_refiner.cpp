@@ -223,9 +223,8 @@ struct PoseRefiner::Associations {
     double along;  // on the joint line, 0 proximal, 1 distal
     Eigen::Vector3d target;
   };
-  std::vector<Sample> contained;             // stick samples off the hull
-  std::vector<std::pair<int, int>> surface;  // (voxel, segment), X84 inliers
-  std::vector<std::pair<int, int>> rays;     // (ray, nearest capsule), X84 inliers
+  std::vector<Sample> contained;          // stick samples off the hull
+  std::vector<std::pair<int, int>> rays;  // (ray, nearest capsule), X84 inliers
 };
 
 PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
@@ -260,31 +259,8 @@ PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
       }
     }
   }
-  // Surface voxels: the capsule they lie nearest to, X84 inliers on the distance.
   const BodyDimensions& dims = model_->dimensions();
   const CapsuleBounds bounds(g, dims);
-  if (!targets.surface.empty() && options_.surface_weight > 0) {
-    std::vector<int> owner(targets.surface.size(), -1);
-    std::vector<double> magnitude(targets.surface.size());
-    for (size_t i = 0; i < targets.surface.size(); ++i) {
-      double best = std::numeric_limits<double>::infinity(), d;
-      Eigen::Vector3d dir;
-      for (int s = 0; s < kSegmentCount; ++s) {
-        if (dims.radius[s] > 0 && bounds.below(s, targets.surface[i]) < best &&
-            surface_distance(g, dims, s, targets.surface[i], &d, &dir) && d < best) {
-          best = d;
-          owner[i] = s;
-        }
-      }
-      magnitude[i] = std::abs(best);
-    }
-    const double surface_limit = x84_threshold(magnitude, options_.x84_k, options_.x84_floor_m);
-    for (size_t i = 0; i < owner.size(); ++i) {
-      if (owner[i] >= 0 && magnitude[i] <= surface_limit) {
-        a.surface.emplace_back(static_cast<int>(i), owner[i]);
-      }
-    }
-  }
   // Silhouette rays: the capsule each passes nearest (most inside). No X84 here: most rays meet
   // a capsule, so the misses' median and MAD are zero and it would reject every ray that still
   // pulls a limb into place; only misses beyond any limb's reach are dropped.
@@ -344,16 +320,7 @@ double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
         g.proximal[c.segment] + c.along * (g.distal[c.segment] - g.proximal[c.segment]);
     normal.add(normal.jacobian(c.segment, x), c.target - x, wc2);
   }
-  // Surface: the voxel is fixed and the capsule surface moves with its segment, de = -n · dp.
   const BodyDimensions& dims = model_->dimensions();
-  const double ws2 = options_.surface_weight * options_.surface_weight;
-  for (const auto& [i, s] : a.surface) {
-    double e;
-    Eigen::Vector3d dir;
-    if (!surface_distance(g, dims, s, targets.surface[i], &e, &dir)) continue;
-    const Eigen::Vector3d surface_point = targets.surface[i] - e * dir;
-    normal.add_scalar(normal.jacobian(s, surface_point), -dir, e, ws2);
-  }
   const double wr2 = options_.ray_weight * options_.ray_weight;
   for (const auto& [i, s] : a.rays) {
     const Eigen::Vector3d q = nearest_on_ray(targets.rays[i], g.line_proximal[s], g.line_distal[s]);

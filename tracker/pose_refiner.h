@@ -20,7 +20,6 @@ struct RefineOptions {
   double centerline_weight = 1.0;   // per centerline point
   double containment_weight = 1.0;  // per stick sample off the hull
   int containment_search = 6;       // voxels searched around a sample for the nearest occupied
-  double surface_weight = 0.3;      // per hull surface voxel
   // Per silhouette ray, on its distance outside the nearest capsule (0 when a capsule meets it).
   double ray_weight = 1.0;
   double ray_max_miss_m = 0.6;  // rays passing farther from every capsule are left out

@@ -133,8 +133,8 @@ struct BodyDimensions {
   // frame: the spine's joints lie near the back of the torso, so the centroids of torso slices
   // run in front of them. ICP matches points to the offset lines; joints stay on the joint line.
   std::array<Eigen::Vector3d, kSegmentCount> centerline_offset = no_offsets();
-  // Radius of each stick's body part around its centerline, for fitting the hull's surface
-  // (see IcpTargets::surface); 0 leaves a stick out of that fit. The torso's is its depth
+  // Radius of each stick's body part around its centerline, for fitting the silhouettes (see
+  // IcpTargets::rays and views); 0 leaves a stick out of that fit. The torso's is its depth
   // (front to back); `torso_width` is its lateral half-width: an elliptic torso shows which way
   // it faces, a round one does not.
   std::array<double, kSegmentCount> radius{};
