@@ -2,6 +2,7 @@
 
 #include <random>
 
+#include "tests/tracker/refine_test_support.h"
 #include "tracker/articulated_icp.h"
 
 namespace simcap::tracker {
@@ -81,10 +82,7 @@ TEST(ArticulatedIcp, RecoversAKnownPoseFromPointsOnTheSticks) {
     StickPose pose = perturbed(truth, 0.15, 0.05);
     ASSERT_GT(max_joint_error(model, pose, truth), 0.08);
     IcpOptions options;
-    options.refine.iterations = 50;
-    options.refine.tolerance = 0;
-    options.refine.leg_prior_m_per_rad = 0;  // the prior's pull is a deliberate bias
-    options.refine.motion_prior_m_per_rad = 0;
+    options.refine = testing::converging_without_priors(50);
     const ArticulatedIcp icp(model, options);
     const IcpResult r = icp.fit(centerline_only(points), pose);
     // From over 8 cm off, noise-free points bring every reference point back to within 1.2 cm

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "core/camera.h"
+#include "tests/tracker/refine_test_support.h"
 #include "tracker/icp_targets.h"
 #include "tracker/pose_init.h"
 #include "tracker/pose_refiner.h"
@@ -64,13 +65,6 @@ std::vector<SilhouetteRay> silhouette_rays(const StickModel& model, const StickP
   return rays;
 }
 
-BodyDimensions round_body() {
-  BodyDimensions dims;
-  dims.radius = {0.13, 0.09, 0.05, 0.04, 0.05, 0.04, 0.075, 0.055, 0.075, 0.055};
-  dims.torso_width = dims.radius[kTorso];
-  return dims;
-}
-
 StickPose walking_pose() {
   StickPose p;
   p.t0 = {0.2, 1.1, -0.1};
@@ -85,7 +79,7 @@ StickPose walking_pose() {
 }
 
 TEST(MeasureRadii, RecoversTheRadiiOfCapsulesFromTheirRays) {
-  const BodyDimensions truth = round_body();
+  const BodyDimensions truth = testing::capsule_body();
   const StickModel model(truth, JointSet::urdf);
   const StickPose pose = walking_pose();
   const auto rays = silhouette_rays(model, pose, 2);
@@ -100,7 +94,7 @@ TEST(MeasureRadii, RecoversTheRadiiOfCapsulesFromTheirRays) {
 }
 
 TEST(PoseRefiner, SilhouetteRaysPullADisplacedArmBack) {
-  const StickModel model(round_body(), JointSet::urdf);
+  const StickModel model(testing::capsule_body(), JointSet::urdf);
   const StickPose truth = walking_pose();
   IcpTargets targets;
   targets.rays = silhouette_rays(model, truth, 3);
@@ -108,12 +102,7 @@ TEST(PoseRefiner, SilhouetteRaysPullADisplacedArmBack) {
   StickPose pose = truth;
   pose.theta[kLShoulder1] = 0.15;  // the arm swung 0.35 rad towards the torso
   pose.theta[kLElbow] = -0.2;
-  RefineOptions options;
-  options.iterations = 30;
-  options.tolerance = 0;
-  options.leg_prior_m_per_rad = 0;
-  options.motion_prior_m_per_rad = 0;
-  const PoseRefiner refiner(model, options);
+  const PoseRefiner refiner(model, testing::converging_without_priors());
   const auto hand = [&](const StickPose& p) {
     return model.reference_points(model.geometry(p))[kLHandTip];
   };

@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "tests/tracker/refine_test_support.h"
 #include "tracker/pose_refiner.h"
 #include "tracker/silhouette_view.h"
 
@@ -67,9 +68,7 @@ std::vector<cv::Mat> capsule_masks(const StickModel& model, const StickPose& pos
 }
 
 TEST(PoseRefiner, RimResidualsPullAnOverhangingArmInside) {
-  BodyDimensions dims;
-  dims.radius = {0.13, 0.09, 0.05, 0.04, 0.05, 0.04, 0.075, 0.055, 0.075, 0.055};
-  const StickModel model(dims, JointSet::urdf);
+  const StickModel model(testing::capsule_body(), JointSet::urdf);
   StickPose truth;
   truth.t0 = {0, 1.1, 0};
   truth.theta[kLShoulder1] = 0.6;
@@ -85,12 +84,7 @@ TEST(PoseRefiner, RimResidualsPullAnOverhangingArmInside) {
   for (size_t c = 0; c < cams.size(); ++c) views.emplace_back(cams[c], masks[c]);
   IcpTargets targets;
   targets.views = &views;
-  RefineOptions options;
-  options.iterations = 30;
-  options.tolerance = 0;
-  options.leg_prior_m_per_rad = 0;
-  options.motion_prior_m_per_rad = 0;
-  const PoseRefiner refiner(model, options);
+  const PoseRefiner refiner(model, testing::converging_without_priors());
   // Lifted 0.4 rad too far: the arm sticks out of every silhouette.
   StickPose pose = truth;
   pose.theta[kLShoulder1] = 1.0;
