@@ -55,11 +55,13 @@ class DatasetWriter {
   std::unique_ptr<CsvWriter> joints3d_, joints2d_, angles_;
 };
 
-// Encoding of the dataset's images, chosen for speed. CPU time per 640x480 image of studio4,
-// measured with OpenImageIO 2.4: RGB PNG 8.2 ms with the defaults (zlib 6, adaptive filters),
+// Encoding of the dataset's images. CPU time per 640x480 image of studio4, measured with
+// OpenImageIO 2.4 / OpenEXR 3.1: RGB PNG 8.2 ms with the defaults (zlib 6, adaptive filters),
 // 1.9 ms unfiltered at zlib 1 (19 kB instead of 12 kB); mask and parts PNGs 2.8 -> 0.7 ms. The
-// float depth EXR takes 22 ms zip-compressed (0.74 MB) and 2-4 ms uncompressed (1.23 MB): at
-// four cameras and 10 frames/s, zip alone would take 0.9 of the 2 CPU-seconds each second.
+// float depth EXR stays uncompressed: 1.24 MB in 2-7 ms, against 0.72 MB in ~18 ms with zip at
+// zlib level 1 (lossless), ~21 ms at zip's default level and 0.63 MB in ~22 ms with piz; rle
+// saves 0.3%. zip:1 costs studio4 a third of its frame rate on 2 cores (`simcap bench render`
+// 12.4 -> 7.3 frames/s), below ARCHITECTURE.md's 10 frame sets per second, for 41% less disk.
 inline const ImageCompression kDatasetCompression{1, false, "none"};
 
 }  // namespace simcap

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
+#include <string_view>
 
 namespace simcap {
 
@@ -20,6 +21,13 @@ inline std::uint64_t mix64(std::uint64_t z) {
 inline std::uint64_t random_bits(std::uint64_t seed, std::initializer_list<std::uint64_t> keys) {
   std::uint64_t h = mix64(seed);
   for (const std::uint64_t k : keys) h = mix64(h ^ k);
+  return h;
+}
+
+// A key for a name, so that a stream follows the name rather than a position in some list.
+inline std::uint64_t text_key(std::string_view text) {
+  std::uint64_t h = mix64(text.size());
+  for (const char c : text) h = mix64(h ^ static_cast<unsigned char>(c));
   return h;
 }
 

@@ -8,6 +8,7 @@
 #include <oneapi/tbb/version.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <memory>
@@ -38,6 +39,35 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+std::string join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+std::vector<std::string> camera_names(const Scene& scene) {
+  std::vector<std::string> names;
+  for (const Camera& c : scene.cameras) names.push_back(c.name);
+  return names;
+}
+
+// Keeps the cameras named in `wanted`, in the rig's order.
+void select_cameras(Scene& scene, const std::vector<std::string>& wanted) {
+  const std::vector<std::string> all = camera_names(scene);
+  for (size_t i = 0; i < wanted.size(); ++i) {
+    if (std::find(all.begin(), all.end(), wanted[i]) == all.end()) {
+      throw Error("--cameras: the scene has no camera '" + wanted[i] + "'; its cameras are " +
+                  join(all));
+    }
+    if (std::find(wanted.begin(), wanted.begin() + i, wanted[i]) != wanted.begin() + i) {
+      throw Error("--cameras: " + wanted[i] + " is listed twice");
+    }
+  }
+  std::erase_if(scene.cameras, [&](const Camera& c) {
+    return std::find(wanted.begin(), wanted.end(), c.name) == wanted.end();
+  });
+}
+
 Scene load_for_render(const fs::path& scene_file, const RenderOptions& options) {
   if (!fs::exists(scene_file)) throw Error(scene_file.string() + ": scene file not found");
   Scene scene = load_scene(scene_file, options.overrides);
@@ -56,6 +86,7 @@ Scene load_for_render(const fs::path& scene_file, const RenderOptions& options) 
                 std::to_string(options.frames));
   }
   if (options.frames > 0) scene.render.frame_count = options.frames;
+  if (!options.cameras.empty()) select_cameras(scene, options.cameras);
   return scene;
 }
 
@@ -69,12 +100,18 @@ bool holds_dataset(const fs::path& dir) {
   }
 }
 
+// The cameras the meta.json of the dataset in `dir` lists.
+std::vector<std::string> dataset_cameras(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& cam : Json::parse(read_text(dir / "meta.json")).value("cameras", Json::array()))
+    names.push_back(cam.get<std::string>());
+  return names;
+}
+
 void remove_dataset(const fs::path& dir) {
-  const Json meta = Json::parse(read_text(dir / "meta.json"));
   std::vector<std::string> entries = {"scene.yaml", "parts.json", "calibration", "background",
                                       "gt"};
-  for (const auto& cam : meta.value("cameras", Json::array()))
-    entries.push_back(cam.get<std::string>());
+  for (const auto& cam : dataset_cameras(dir)) entries.push_back(cam);
   entries.push_back("meta.json");
   for (const auto& e : entries) {
     std::error_code ec;
@@ -93,6 +130,12 @@ void prepare_output(const fs::path& out_dir, const Scene& scene, const RenderOpt
   if (!empty && options.resume) {
     if (!holds_dataset(out_dir) || !fs::exists(out_dir / "scene.yaml")) {
       throw Error(out_dir.string() + ": --resume: the folder holds no simcap dataset");
+    }
+    const std::vector<std::string> existing = dataset_cameras(out_dir);
+    if (existing != camera_names(scene)) {
+      throw Error(out_dir.string() + ": --resume: the dataset there has the cameras " +
+                  join(existing) + ", this render has " + join(camera_names(scene)) +
+                  " (--cameras must select the same ones)");
     }
     // The same scene writes the same scene.yaml; only the frame count may grow.
     Scene candidate = scene;
@@ -145,9 +188,7 @@ Json describe(const Scene& scene, const fs::path& scene_file,
   meta["first_frame"] = scene.render.first_frame;
   meta["frame_count"] = scene.render.frame_count;
   meta["samples_per_pixel"] = scene.render.samples_per_pixel;
-  Json cams = Json::array();
-  for (const Camera& c : scene.cameras) cams.push_back(c.name);
-  meta["cameras"] = cams;
+  meta["cameras"] = camera_names(scene);
   Json names = Json::array();
   for (const PosedActor& a : actors) names.push_back(a.name);
   meta["actors"] = names;
@@ -155,8 +196,8 @@ Json describe(const Scene& scene, const fs::path& scene_file,
       {"frames", "dataset frame i shows scene time (first_frame + i) / fps"},
       {"rgb", "8-bit sRGB PNG, Lambert shading in linear light"},
       {"depth",
-       "float32 EXR, z-depth in metres (camera-frame z of the surface, not the distance "
-       "along the ray); +inf where the ray hits nothing"},
+       "float32 EXR, z-depth in metres (camera-frame z of the "
+       "surface, not the distance along the ray); +inf where the ray hits nothing"},
       {"mask", actors.size() == 1 ? "8-bit PNG, 255 = the actor, 0 = anything else"
                                   : "8-bit PNG, 1 + actor index (order of 'actors'), 0 = no actor"},
       {"parts", "8-bit PNG, see parts.json"},
@@ -186,9 +227,7 @@ RenderSummary render_dataset(const fs::path& scene_file, const fs::path& out_dir
   prepare_output(out_dir, scene, options);
 
   const auto& cameras = setup.cameras();
-  std::vector<std::string> camera_names;
-  for (const Camera& c : scene.cameras) camera_names.push_back(c.name);
-  DatasetWriter writer(out_dir, camera_names, scene.render.normals);
+  DatasetWriter writer(out_dir, camera_names(scene), scene.render.normals);
   writer.remove_stale_temporaries();
   Json meta = describe(scene, scene_file, setup.actors().posed());
   meta["complete"] = false;

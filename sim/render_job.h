@@ -15,6 +15,9 @@ struct RenderOptions {
   int frames = -1;                        // > 0: render this many frames instead of the scene's
   std::filesystem::path motion_override;  // a BVH file replacing the first actor's motion
   std::optional<std::uint64_t> seed;      // replaces the scene's render seed
+  // Names of the rig's cameras to render (kept in rig order, with their names; the dataset then
+  // holds only these); empty: all. A camera's images do not depend on which others are rendered.
+  std::vector<std::string> cameras;
   // Continue a render in `out_dir`: frames whose files all exist are not rendered again (their
   // ground truth is recomputed, which is cheap). The scene must be the one rendered there.
   bool resume = false;

@@ -278,7 +278,8 @@ RayCounts Renderer::render_tile(const CameraRays& rays, const Tile& tile, int fr
   constexpr int N = Lanes::N, B = CameraRays::kBlock;
   static_assert(3 * N == SrgbEncoder::kBatch);
   const bool single_actor = embree_.actor_count() == 1;
-  const auto camera_key = static_cast<std::uint64_t>(tile.camera);
+  // Keyed by name: a camera rendered alone (render --cameras) gets the images it gets in its rig.
+  const std::uint64_t camera_key = text_key(rays.camera().name);
   const auto frame_key = static_cast<std::uint64_t>(static_cast<std::int64_t>(frame));
   RayCounts counts;
   Lanes l;

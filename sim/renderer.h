@@ -47,7 +47,8 @@ class Renderer {
   Renderer(const EmbreeScene& embree, const Scene& scene);
 
   // Renders all `cameras` for dataset frame `frame` (which keys the anti-aliasing jitter and
-  // sensor noise). `sensor_noise` = false renders the noise-free image (background plates).
+  // sensor noise, together with the camera's name). `sensor_noise` = false renders the noise-free
+  // image (background plates).
   RayCounts render(const std::vector<CameraRays>& cameras, int frame,
                    std::vector<RenderedView>& views, bool sensor_noise = true) const;
 

@@ -32,6 +32,10 @@ void add_render(CLI::App& app, Action& action) {
   cmd->add_option("scene", args.scene, "Scene file (YAML; see scenes/README.md)")->required();
   cmd->add_option("-o,--output", args.out, "Dataset folder to write (new or empty)")->required();
   add_render_options(cmd, args.options, args.seed);
+  cmd->add_option("--cameras", args.options.cameras,
+                  "Only these cameras of the scene's rig, comma-separated (e.g. cam00,cam02), "
+                  "with their names and images")
+      ->delimiter(',');
   cmd->add_flag("--overwrite", args.options.overwrite,
                 "Replace the dataset already in the output folder");
   cmd->add_flag("-q,--quiet", args.options.quiet, "No progress on stderr");
@@ -40,6 +44,7 @@ void add_render(CLI::App& app, Action& action) {
       "  simcap render scenes/studio4.yaml -o out/studio4 --frames 60\n"
       "  simcap render scenes/studio4.yaml -o out/small --set 'rig.resolution=[320,240]'\n"
       "  simcap render scenes/studio4.yaml -o out/studio4 --resume\n"
+      "  simcap render scenes/studio4.yaml -o out/two --cameras cam00,cam02\n"
       "Writes scene.yaml, meta.json, calibration/, background/, camNN/{rgb,depth,mask,parts}/,\n"
       "parts.json and gt/{joints3d,joints2d,angles}.csv (layout: ARCHITECTURE.md).");
   cmd->callback([&action] { action = [] { return run_render(args); }; });
