@@ -87,8 +87,9 @@ std::string loop_summary_text(const LoopResult& r) {
                   r.dataset.string().c_str());
   }
   s += buf;
-  std::snprintf(buf, sizeof buf, "  %-10s %7.1f s  %.1f frames/s (%d re-initializations)\n",
-                "track", r.track_s, r.track.frames / r.track_s, r.track.reinitializations);
+  std::snprintf(buf, sizeof buf, "  %-10s %7.1f s  %.1f frames/s (%d re-initialization%s)\n",
+                "track", r.track_s, r.track.frames / r.track_s, r.track.reinitializations,
+                r.track.reinitializations == 1 ? "" : "s");
   s += buf;
   std::snprintf(buf, sizeof buf, "  %-10s %7.1f s\n", "validate", r.validate_s);
   s += buf;
