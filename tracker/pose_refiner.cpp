@@ -224,7 +224,7 @@ struct PoseRefiner::Associations {
     Eigen::Vector3d target;
   };
   std::vector<Sample> contained;          // stick samples off the hull
-  std::vector<std::pair<int, int>> rays;  // (ray, nearest capsule), X84 inliers
+  std::vector<std::pair<int, int>> rays;  // (ray, the capsule it passes most inside of)
 };
 
 PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
@@ -273,16 +273,14 @@ PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
       for (int s = 0; s < kSegmentCount; ++s) {
         if (dims.radius[s] <= 0) continue;
         if (bounds.below(s, ray) >= best) continue;
-        const Eigen::Vector3d q =
-            nearest_on_ray(targets.rays[i], g.line_proximal[s], g.line_distal[s]);
+        const Eigen::Vector3d q = nearest_on_ray(ray, g.line_proximal[s], g.line_distal[s]);
         if (surface_distance(g, dims, s, q, &d, &dir) && d < best) best = d, owner = s;
       }
       if (owner < 0 || best > options_.ray_max_miss_m) continue;
       if (owner == kLCalf || owner == kRCalf) {
         // The model has no feet: rays past the ankle would drag the calf towards the toes.
         const Eigen::Vector3d ab = g.line_distal[owner] - g.line_proximal[owner];
-        const Eigen::Vector3d q =
-            nearest_on_ray(targets.rays[i], g.line_proximal[owner], g.line_distal[owner]);
+        const Eigen::Vector3d q = nearest_on_ray(ray, g.line_proximal[owner], g.line_distal[owner]);
         if ((q - g.line_proximal[owner]).dot(ab) > options_.foot_start * ab.squaredNorm()) continue;
       }
       a.rays.emplace_back(static_cast<int>(i), owner);
@@ -335,7 +333,7 @@ double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
   if (targets.views && options_.rim_weight > 0) {
     const double w2 = options_.rim_weight * options_.rim_weight;
     for (const SilhouetteView& view : *targets.views) {
-      if (!view.empty()) add_rim(view, g, model_->dimensions(), options_, w2, normal);
+      if (!view.empty()) add_rim(view, g, dims, options_, w2, normal);
     }
   }
   auto prior = [&](std::initializer_list<int> angles, double slope) {
