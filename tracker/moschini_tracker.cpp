@@ -54,11 +54,14 @@ double MoschiniTracker::outside_fraction(const StickPose& pose, const Occupancy&
   return static_cast<double>(outside) / total;
 }
 
-double MoschiniTracker::score(const StickPose& pose, const Observation& obs, IcpResult* fit,
-                              double* outside) const {
-  if (fit) *fit = icp_.evaluate(obs.points, pose);
-  if (outside) *outside = outside_fraction(pose, obs.hull);
+double MoschiniTracker::score(const StickPose& pose, const Observation& obs) const {
   return refiner_.cost(targets_of(obs), pose);
+}
+
+void MoschiniTracker::diagnose(const StickPose& pose, const Observation& obs,
+                               TrackStep& out) const {
+  out.icp = icp_.evaluate(obs.points, pose);
+  out.outside_fraction = outside_fraction(pose, obs.hull);
 }
 
 StickPose MoschiniTracker::best_upright(const Observation& obs, const StickPose* current) const {
@@ -143,7 +146,7 @@ TrackStep MoschiniTracker::step(const Observation& obs) {
     refiner_.refine(targets, refined);
     if (refiner_.cost(targets, refined) < refiner_.cost(targets, measured)) measured = refined;
     resolve_crossed_limbs(targets, measured);
-    score(measured, obs, &out.icp, &out.outside_fraction);
+    diagnose(measured, obs, out);
     const RecoveryOptions& rec = options_.recovery;
     char why[96] = "";
     if (out.icp.mean_distance_m > rec.lost_distance_m) {
@@ -162,7 +165,7 @@ TrackStep MoschiniTracker::step(const Observation& obs) {
         ++reinitializations_;
         measured = found;
         filter_.reset(found);
-        score(measured, obs, &out.icp, &out.outside_fraction);
+        diagnose(measured, obs, out);
       }
     }
   }

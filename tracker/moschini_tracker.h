@@ -57,13 +57,15 @@ class MoschiniTracker {
 
   // What ICP fits on this frame.
   static IcpTargets targets_of(const Observation& obs);
-  // Lower is better: the joint refinement's cost (centerline, hull, silhouette rays, priors).
-  double score(const StickPose& pose, const Observation& obs, IcpResult* fit = nullptr,
-               double* outside = nullptr) const;
+  // Lower is better: the joint refinement's cost (centerline, hull, silhouette rays and
+  // outlines, priors).
+  double score(const StickPose& pose, const Observation& obs) const;
   // Fraction of points sampled every voxel along the sticks that lie off the hull.
   double outside_fraction(const StickPose& pose, const Occupancy& hull) const;
 
  private:
+  // The ICP residual and the fraction of the sticks off the hull: what lost tracking is judged by.
+  void diagnose(const StickPose& pose, const Observation& obs, TrackStep& out) const;
   StickPose best_upright(const Observation& obs, const StickPose* current) const;
   // When the fitted legs or arms cross (the left foot or knee, hand or elbow, right of the right
   // one in the torso's frame), tries the pair exchanged and keeps whichever the hull and the
