@@ -269,19 +269,19 @@ PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
       const SilhouetteRay& ray = targets.rays[i];
       double best = std::numeric_limits<double>::infinity(), d;
       int owner = -1;
-      Eigen::Vector3d dir;
+      Eigen::Vector3d dir, nearest;
       for (int s = 0; s < kSegmentCount; ++s) {
         if (dims.radius[s] <= 0) continue;
         if (bounds.below(s, ray) >= best) continue;
         const Eigen::Vector3d q = nearest_on_ray(ray, g.line_proximal[s], g.line_distal[s]);
-        if (surface_distance(g, dims, s, q, &d, &dir) && d < best) best = d, owner = s;
+        if (surface_distance(g, dims, s, q, &d, &dir) && d < best) best = d, owner = s, nearest = q;
       }
       if (owner < 0 || best > options_.ray_max_miss_m) continue;
       if (owner == kLCalf || owner == kRCalf) {
         // The model has no feet: rays past the ankle would drag the calf towards the toes.
         const Eigen::Vector3d ab = g.line_distal[owner] - g.line_proximal[owner];
-        const Eigen::Vector3d q = nearest_on_ray(ray, g.line_proximal[owner], g.line_distal[owner]);
-        if ((q - g.line_proximal[owner]).dot(ab) > options_.foot_start * ab.squaredNorm()) continue;
+        const double along = (nearest - g.line_proximal[owner]).dot(ab);
+        if (along > options_.foot_start * ab.squaredNorm()) continue;
       }
       a.rays.emplace_back(static_cast<int>(i), owner);
     }
