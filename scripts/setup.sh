@@ -6,7 +6,7 @@ packages=(
   build-essential cmake ninja-build pkg-config ccache
   libembree-dev libopenimageio-dev libassimp-dev libeigen3-dev libopencv-dev
   liburdfdom-dev liburdfdom-tools libtbb-dev libyaml-cpp-dev nlohmann-json3-dev
-  libpugixml-dev libcli11-dev googletest libgtest-dev libbenchmark-dev
+  libpugixml-dev libcli11-dev googletest libgtest-dev libbenchmark-dev libpng-dev
 )
 
 missing=()

@@ -1,0 +1,15 @@
+// The dataset's 8-bit grey and colour PNGs decoded with libpng directly, skipping zlib's
+// Adler-32 pass over the pixels (the PNG chunk CRCs still check every compressed byte).
+#pragma once
+
+#include <filesystem>
+#include <opencv2/core.hpp>
+
+namespace simcap::tracker {
+
+// As cv::imread(path, flags) for flags cv::IMREAD_UNCHANGED and cv::IMREAD_COLOR (BGR), and the
+// same pixels. Files this path does not cover (16 bits, palettes, alpha, interlacing, grey read
+// as colour, damaged files) go to cv::imread. Empty when the file cannot be read.
+cv::Mat decode_png(const std::filesystem::path& path, int flags);
+
+}  // namespace simcap::tracker
