@@ -3,6 +3,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
+#include <cstdint>
 #include <vector>
 
 #include "tracker/silhouette_view.h"
@@ -11,9 +13,13 @@
 
 namespace simcap::tracker {
 
+constexpr std::uint16_t kAllParts = (1u << kSegmentCount) - 1;
+
 struct SilhouetteRay {
-  Eigen::Vector3d origin;     // the camera centre
-  Eigen::Vector3d direction;  // unit, world
+  Eigen::Vector3d origin;                // the camera centre
+  Eigen::Vector3d direction;             // unit, world
+  std::array<std::uint8_t, 3> colour{};  // the pixel's colour, when the frame's were read
+  std::uint16_t parts = kAllParts;       // the sticks it may meet (bit s = Segment s)
 };
 
 struct IcpTargets {
@@ -53,6 +59,11 @@ ClosestStick closest_stick(const StickGeometry& g, const Eigen::Vector3d& x);
 // The point of `ray` nearest to the segment [a, b].
 Eigen::Vector3d nearest_on_ray(const SilhouetteRay& ray, const Eigen::Vector3d& a,
                                const Eigen::Vector3d& b);
+
+// Signed distance of `v` to the capsule of segment `s` (an elliptic cylinder along the torso's
+// middle), with the outward normal `dir` there; false where the normal is undefined (on the axis).
+bool capsule_distance(const StickGeometry& g, const BodyDimensions& dims, int s,
+                      const Eigen::Vector3d& v, double* d, Eigen::Vector3d* dir);
 
 // The X84 threshold on distances: med + k · 1.4826 · med|e - med|, but never below `floor`:
 // near convergence on clean data the MAD shrinks towards 0 and X84 would reject the very points

@@ -36,11 +36,11 @@ Observation Perception::observe(int frame, bool compare_masks) const {
   Observation obs;
   obs.frame = frame;
   const int nc = dataset_->camera_count();
-  std::vector<cv::Mat> silhouettes(nc);
+  std::vector<cv::Mat> silhouettes(nc), colours(nc);
   if (compare_masks) obs.silhouette_iou.assign(nc, 0.0);
   auto t = Clock::now();
   tbb::parallel_for(0, nc, [&](int c) {
-    silhouettes[c] = silhouettes_.extract(c, frame);
+    silhouettes[c] = silhouettes_.extract(c, frame, options_.colours ? &colours[c] : nullptr);
     if (compare_masks)
       obs.silhouette_iou[c] = silhouette_iou(silhouettes[c], dataset_->mask(c, frame));
   });
@@ -51,8 +51,15 @@ Observation Perception::observe(int frame, bool compare_masks) const {
     size_t i = 0;
     for (int v = stride / 2; v < cam.height; v += stride) {
       const std::uint8_t* row = silhouettes[c].ptr<std::uint8_t>(v);
+      const cv::Vec3b* rgb = options_.colours ? colours[c].ptr<cv::Vec3b>(v) : nullptr;
       for (int u = stride / 2; u < cam.width; u += stride, ++i) {
-        if (row[u]) obs.rays.push_back({origin, ray_directions_[c][i].cast<double>().normalized()});
+        if (!row[u]) continue;
+        SilhouetteRay& ray =
+            obs.rays.emplace_back(origin, ray_directions_[c][i].cast<double>().normalized());
+        if (rgb) {
+          ray.colour = {rgb[u][0], rgb[u][1], rgb[u][2]};
+          ray.parts = appearance_.parts(ray.colour);
+        }
       }
     }
   }

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "tracker/appearance.h"
 #include "tracker/articulated_icp.h"
 #include "tracker/dataset.h"
 #include "tracker/silhouettes.h"
@@ -19,7 +20,8 @@ struct PerceptionOptions {
   SilhouetteOptions silhouettes;
   // Silhouette pixels on a grid of this many pixels become rays for the fit; 0 = none.
   int ray_stride = 4;
-  bool views = true;  // nearest-silhouette-pixel maps for the fit
+  bool views = true;     // nearest-silhouette-pixel maps for the fit
+  bool colours = false;  // rays carry their pixel's colour (the frame's RGB image is read)
 };
 
 struct Observation {
@@ -39,12 +41,15 @@ class Perception {
   // Thread-safe. With `compare_masks`, also scores the silhouettes against camNN/mask.
   Observation observe(int frame, bool compare_masks = false) const;
   const SilhouetteExtractor& silhouettes() const { return silhouettes_; }
+  // From now on, each ray lists the parts its colour may show (needs PerceptionOptions::colours).
+  void set_appearance(const AppearanceModel& appearance) { appearance_ = appearance; }
 
  private:
   const Dataset* dataset_;
   PerceptionOptions options_;
   SilhouetteExtractor silhouettes_;
   VisualHull hull_;
+  AppearanceModel appearance_;
   // Per camera, the world direction through every pixel of the ray grid (row-major), so that
   // a frame's rays cost a lookup instead of an iterative undistortion each.
   std::vector<std::vector<Eigen::Vector3f>> ray_directions_;

@@ -104,7 +104,7 @@ class Normal {
     (*rhs_)(parameter) -= slope * e;
   }
   // A one-sided residual that is satisfied: it counts, so that costs stay comparable.
-  void add_zero() { ++count_; }
+  void add_zero(int n = 1) { count_ += n; }
   double cost() const { return count_ ? cost_ / count_ : 0.0; }
 
  private:
@@ -122,31 +122,6 @@ class Normal {
   double cost_ = 0;
   int count_ = 0;
 };
-
-// Signed distance of `v` to the capsule of segment `s` (an elliptic cylinder along the torso's
-// middle), with the outward normal there and the foot of `v` on the stick.
-bool surface_distance(const StickGeometry& g, const BodyDimensions& dims, int s,
-                      const Eigen::Vector3d& v, double* d, Eigen::Vector3d* dir) {
-  const Eigen::Vector3d ab = g.line_distal[s] - g.line_proximal[s];
-  const double t = std::clamp((v - g.line_proximal[s]).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  const Eigen::Vector3d dv = v - g.line_proximal[s] - t * ab;
-  if (s == kTorso && dims.torso_width > 0 && t > 0 && t < 1) {
-    // First-order distance to the ellipse x²/a² + z²/b² = 1 in the torso's frame.
-    const Eigen::Matrix3d& R0 = g.rotation[kTorso];
-    const Eigen::Vector3d p = R0.transpose() * dv;
-    const double a = dims.torso_width, b = dims.radius[kTorso];
-    const double rho = std::hypot(p.x() / a, p.z() / b);
-    const Eigen::Vector3d grad(p.x() / (a * a), 0, p.z() / (b * b));
-    if (!(rho > 1e-9) || grad.norm() < 1e-12) return false;
-    *d = (rho - 1) * rho / grad.norm();
-    *dir = R0 * grad.normalized();
-    return true;
-  }
-  if (dv.norm() < 1e-9) return false;
-  *d = dv.norm() - dims.radius[s];
-  *dir = dv.normalized();
-  return true;
-}
 
 // The rim residuals of one camera's view: points on each capsule's outline as that camera sees
 // it, pulled towards the nearest silhouette pixel when they project outside.
@@ -225,6 +200,9 @@ struct PoseRefiner::Associations {
   };
   std::vector<Sample> contained;          // stick samples off the hull
   std::vector<std::pair<int, int>> rays;  // (ray, the capsule it passes most inside of)
+  // Rays passing deeper than RefineOptions::settled_depth_m inside a capsule: residual 0 here,
+  // and counted as 0 for the steps this iteration tries.
+  int settled_rays = 0;
 };
 
 PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
@@ -261,7 +239,8 @@ PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
   }
   const BodyDimensions& dims = model_->dimensions();
   const CapsuleBounds bounds(g, dims);
-  // Silhouette rays: the capsule each passes nearest (most inside). No X84 here: most rays meet
+  // Silhouette rays: the capsule each passes nearest (most inside) among the parts its colour
+  // may show. No X84 here: most rays meet
   // a capsule, so the misses' median and MAD are zero and it would reject every ray that still
   // pulls a limb into place; only misses beyond any limb's reach are dropped.
   if (!targets.rays.empty() && options_.ray_weight > 0) {
@@ -271,10 +250,10 @@ PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
       int owner = -1;
       Eigen::Vector3d dir, nearest;
       for (int s = 0; s < kSegmentCount; ++s) {
-        if (dims.radius[s] <= 0) continue;
+        if (dims.radius[s] <= 0 || !(ray.parts >> s & 1)) continue;
         if (bounds.below(s, ray) >= best) continue;
         const Eigen::Vector3d q = nearest_on_ray(ray, g.line_proximal[s], g.line_distal[s]);
-        if (surface_distance(g, dims, s, q, &d, &dir) && d < best) best = d, owner = s, nearest = q;
+        if (capsule_distance(g, dims, s, q, &d, &dir) && d < best) best = d, owner = s, nearest = q;
       }
       if (owner < 0 || best > options_.ray_max_miss_m) continue;
       if (owner == kLCalf || owner == kRCalf) {
@@ -283,7 +262,11 @@ PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
         const double along = (nearest - g.line_proximal[owner]).dot(ab);
         if (along > options_.foot_start * ab.squaredNorm()) continue;
       }
-      a.rays.emplace_back(static_cast<int>(i), owner);
+      if (best < -options_.settled_depth_m) {
+        ++a.settled_rays;
+      } else {
+        a.rays.emplace_back(static_cast<int>(i), owner);
+      }
     }
   }
   return a;
@@ -320,11 +303,12 @@ double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
   }
   const BodyDimensions& dims = model_->dimensions();
   const double wr2 = options_.ray_weight * options_.ray_weight;
+  normal.add_zero(a.settled_rays);
   for (const auto& [i, s] : a.rays) {
     const Eigen::Vector3d q = nearest_on_ray(targets.rays[i], g.line_proximal[s], g.line_distal[s]);
     double e;
     Eigen::Vector3d dir;
-    if (!surface_distance(g, dims, s, q, &e, &dir) || e <= 0) {
+    if (!capsule_distance(g, dims, s, q, &e, &dir) || e <= 0) {
       normal.add_zero();
       continue;
     }

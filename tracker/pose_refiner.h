@@ -23,6 +23,10 @@ struct RefineOptions {
   // Per silhouette ray, on its distance outside the nearest capsule (0 when a capsule meets it).
   double ray_weight = 1.0;
   double ray_max_miss_m = 0.6;  // rays passing farther from every capsule are left out
+  // Rays passing this deep inside a capsule count as met for the whole iteration, trial steps
+  // included, without being recomputed (exact at the pose they were associated at; a step that
+  // moves a surface this far is rare, and the next iteration looks again).
+  double settled_depth_m = 0.03;
   // Per point sampled every `rim_step_m` along each capsule's outline as each camera sees it, on
   // its distance outside that camera's silhouette (0 inside).
   double rim_weight = 1.0;

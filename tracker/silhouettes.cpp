@@ -50,14 +50,19 @@ cv::Mat SilhouetteExtractor::clean(const cv::Mat& mask) const {
   return out;
 }
 
-cv::Mat SilhouetteExtractor::extract(int camera, int frame) const {
+cv::Mat SilhouetteExtractor::extract(int camera, int frame, cv::Mat* colour) const {
+  if (method_ == SilhouetteMethod::gt) {
+    if (colour) *colour = dataset_->rgb(camera, frame);
+    return dataset_->mask(camera, frame);
+  }
+  const cv::Mat image = dataset_->rgb(camera, frame);
+  if (colour) *colour = image;
   switch (method_) {
     case SilhouetteMethod::gt:
-      return dataset_->mask(camera, frame);
+      break;
     case SilhouetteMethod::bgsub:
-      return clean(gaussian_.at(camera).foreground(dataset_->rgb(camera, frame)));
+      return clean(gaussian_.at(camera).foreground(image));
     case SilhouetteMethod::mog2: {
-      const cv::Mat image = dataset_->rgb(camera, frame);
       cv::Mat fg;
       {
         std::lock_guard lock(mog2_mutex_[camera]);

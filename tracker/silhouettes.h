@@ -34,8 +34,9 @@ class SilhouetteExtractor {
   SilhouetteMethod method() const { return method_; }
   // Which images of the dataset this method reads ("mask" or "rgb").
   std::string image_kind() const { return method_ == SilhouetteMethod::gt ? "mask" : "rgb"; }
-  // CV_8UC1, nonzero = actor. Thread-safe.
-  cv::Mat extract(int camera, int frame) const;
+  // CV_8UC1, nonzero = actor. Thread-safe. With `colour`, the frame's colour image goes there
+  // too (read once when the method subtracts it from the background).
+  cv::Mat extract(int camera, int frame, cv::Mat* colour = nullptr) const;
 
  private:
   cv::Mat clean(const cv::Mat& mask) const;

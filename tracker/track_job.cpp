@@ -49,8 +49,25 @@ TrackSummary run_moschini(const fs::path& dataset_path, const TrackOptions& opti
   PerceptionOptions popt;
   popt.hull.voxel_m = options.voxel_m;
   popt.hull.volume = working_volume(ds);
-  const Perception perception(ds, method, popt);
+  if (!options.appearance.empty() && options.appearance != "on" && options.appearance != "off") {
+    throw Error("--appearance: unknown value '" + options.appearance + "' (expected on or off)");
+  }
+  popt.colours = options.appearance.empty() ? options.init == "gt" : options.appearance == "on";
+  Perception perception(ds, method, popt);
   std::vector<int> frames = ds.frames(perception.silhouettes().image_kind());
+  if (popt.colours && perception.silhouettes().image_kind() != "rgb") {
+    const std::string hint =
+        " (--appearance reads a colour image with every mask; --appearance off tracks on the "
+        "masks alone)";
+    std::vector<int> colour;
+    try {
+      colour = ds.frames("rgb");
+    } catch (const Error& e) {
+      throw Error(std::string(e.what()) + hint);
+    }
+    if (colour != frames)
+      throw Error(dataset_path.string() + ": rgb and mask frames differ" + hint);
+  }
   if (max_frames >= 0 && static_cast<int>(frames.size()) > max_frames) frames.resize(max_frames);
   const bool compare_masks =
       method != SilhouetteMethod::gt && fs::is_directory(ds.root() / ds.cameras()[0].name / "mask");
@@ -70,6 +87,7 @@ TrackSummary run_moschini(const fs::path& dataset_path, const TrackOptions& opti
     const Observation first = perception.observe(frames.front());
     dims.centerline_offset = measure_centerline_offsets(plain, start, first.points);
     measure_radii(dims, topt.joints, start, first.rays);
+    if (popt.colours) perception.set_appearance({StickModel(dims, topt.joints), start, first.rays});
     tracker.emplace(dims, topt);
     tracker->start(start);
   } else {
@@ -91,6 +109,9 @@ TrackSummary run_moschini(const fs::path& dataset_path, const TrackOptions& opti
     finder.start_upright(first.front());
     const StickPose start = finder.step(first.front()).pose;
     measure_radii(dims, topt.joints, start, first.front().rays);
+    if (popt.colours) {
+      perception.set_appearance({StickModel(dims, topt.joints), start, first.front().rays});
+    }
     tracker.emplace(dims, topt);
     tracker->start(start);
   }

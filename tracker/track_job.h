@@ -19,6 +19,10 @@ struct TrackOptions {
   std::string init = "gt";          // gt | auto
   std::string joints = "urdf";      // moschini (Table 5.1, 23-parameter EKF) | urdf (+ hip twists)
   double voxel_m = 0.02;
+  // moschini: learn the parts' colours on the first frame and let each silhouette ray meet only
+  // the parts its colour may show: "on" | "off"; empty: on with --init gt, off with --init auto
+  // (whose first pose is only a rough upright fit, too rough to learn from).
+  std::string appearance;
   bool quiet = false;
   double sik_noise_m = 0.0;  // sik: Gaussian noise on the end-effectors, metres
   std::uint64_t seed = 1;    // sik: seed of that noise

@@ -2,10 +2,9 @@
 // the refinement pulling a displaced limb back onto the rays of its silhouette.
 #include <gtest/gtest.h>
 
-#include <numbers>
 #include <random>
 
-#include "core/camera.h"
+#include "tests/tracker/ray_rig.h"
 #include "tests/tracker/refine_test_support.h"
 #include "tracker/icp_targets.h"
 #include "tracker/pose_init.h"
@@ -14,11 +13,9 @@
 namespace simcap::tracker {
 namespace {
 
-double segment_distance(const Eigen::Vector3d& x, const Eigen::Vector3d& a,
-                        const Eigen::Vector3d& b) {
-  const double t = std::clamp((x - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-  return (x - a - t * (b - a)).norm();
-}
+using testing::segment_distance;
+using testing::silhouette_rays;
+using testing::walking_pose;
 
 TEST(NearestOnRay, MatchesADenseSearchAlongTheRay) {
   std::mt19937 rng(5);
@@ -35,47 +32,6 @@ TEST(NearestOnRay, MatchesADenseSearchAlongTheRay) {
     }
     EXPECT_LE(segment_distance(q, a, b), best + 1e-6) << trial;
   }
-}
-
-// A ring of cameras around `target`; the rays through every pixel that sees the capsule body of
-// `pose` (a stick model with radii), on a `stride` pixel grid.
-std::vector<SilhouetteRay> silhouette_rays(const StickModel& model, const StickPose& pose,
-                                           int stride) {
-  const StickGeometry g = model.geometry(pose);
-  const BodyDimensions& dims = model.dimensions();
-  std::vector<SilhouetteRay> rays;
-  for (int c = 0; c < 6; ++c) {
-    const double angle = 2 * std::numbers::pi * c / 6 + 0.3;
-    const Eigen::Vector3d eye =
-        pose.t0 + Eigen::Vector3d(4 * std::sin(angle), 1.0, 4 * std::cos(angle));
-    const Camera cam = Camera::look_at("c", 320, 480, 0.7, eye, pose.t0);
-    for (int v = 0; v < cam.height; v += stride) {
-      for (int x = 0; x < cam.width; x += stride) {
-        const SilhouetteRay ray{cam.centre(), cam.unproject(Eigen::Vector2d(x, v))};
-        for (int s = 0; s < kSegmentCount; ++s) {
-          const Eigen::Vector3d q = nearest_on_ray(ray, g.line_proximal[s], g.line_distal[s]);
-          if (segment_distance(q, g.line_proximal[s], g.line_distal[s]) < dims.radius[s]) {
-            rays.push_back(ray);
-            break;
-          }
-        }
-      }
-    }
-  }
-  return rays;
-}
-
-StickPose walking_pose() {
-  StickPose p;
-  p.t0 = {0.2, 1.1, -0.1};
-  p.R0 = Eigen::AngleAxisd(0.5, Eigen::Vector3d::UnitY()).toRotationMatrix();
-  p.theta[kLShoulder1] = 0.5;
-  p.theta[kRShoulder1] = -0.5;
-  p.theta[kLElbow] = -0.6;
-  p.theta[kLHip2] = -0.4;
-  p.theta[kRHip2] = 0.3;
-  p.theta[kRKnee] = 0.5;
-  return p;
 }
 
 TEST(MeasureRadii, RecoversTheRadiiOfCapsulesFromTheirRays) {

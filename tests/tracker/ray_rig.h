@@ -1,0 +1,35 @@
+// Test support: silhouette rays of a capsule body seen by a ring of six cameras, optionally
+// coloured by the part each pixel shows, and a walking pose to look at.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "tracker/icp_targets.h"
+#include "tracker/stick_model.h"
+
+namespace simcap::testing {
+
+// BGR colour of each part (Segment order).
+using Palette = std::array<std::array<std::uint8_t, 3>, tracker::kSegmentCount>;
+
+// Where the cameras stand: azimuths around the torso, 4 m away and 1 m above it.
+std::vector<double> camera_ring(int cameras = 6);
+
+// The rays through every pixel (on a `stride` pixel grid) that sees the capsules of `pose` (a
+// stick model with radii). With a palette, each ray carries the colour of the front-most capsule
+// it meets, shaded by a light from above (factor 0.5–1), and `shown` gets that capsule.
+std::vector<tracker::SilhouetteRay> silhouette_rays(
+    const tracker::StickModel& model, const tracker::StickPose& pose, int stride,
+    const Palette* palette = nullptr, std::vector<int>* shown = nullptr,
+    const std::vector<double>& azimuths = camera_ring());
+
+// Distance from x to the segment [a, b].
+double segment_distance(const Eigen::Vector3d& x, const Eigen::Vector3d& a,
+                        const Eigen::Vector3d& b);
+
+// Torso turned, arms swinging, one knee bent.
+tracker::StickPose walking_pose();
+
+}  // namespace simcap::testing
