@@ -67,6 +67,11 @@ TEST(TrackJob, TracksTheCapsuleBodyWithGroundTruthSilhouettes) {
   EXPECT_EQ(read_text(out / "t" / "joints3d.csv"), read_text(out / "u" / "joints3d.csv"));
   EXPECT_EQ(read_text(out / "t" / "diagnostics" / "centerline.csv"),
             read_text(out / "u" / "diagnostics" / "centerline.csv"));
+  // Every capsule of this dataset has one colour: the appearance model rules nothing out.
+  ASSERT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / "v").string() +
+                       " --appearance off --quiet"),
+            0);
+  EXPECT_EQ(read_text(out / "t" / "joints3d.csv"), read_text(out / "v" / "joints3d.csv"));
 }
 
 TEST(TrackJob, SubtractedSilhouettesAreScoredAgainstTheMasks) {
@@ -140,8 +145,18 @@ TEST(TrackJob, BadDatasetsGiveClearErrors) {
   EXPECT_EQ(run_simcap("track " + no_gt.string() + out, &log), 1);
   EXPECT_NE(log.find("joints3d.csv: missing (needed by --init gt)"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(dir / "out" / "joints3d.csv"));
+  // Masks without colour images: --appearance (on by default with --init gt) says what to do.
+  const fs::path masks_only = copy("masks_only");
+  fs::remove_all(masks_only / "cam02" / "rgb");
+  EXPECT_EQ(run_simcap("track " + masks_only.string() + out, &log), 1);
+  EXPECT_NE(log.find("cam02/rgb: missing"), std::string::npos) << log;
+  EXPECT_NE(log.find("--appearance off"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir / "out" / "joints3d.csv"));
+  EXPECT_EQ(run_simcap("track " + masks_only.string() + out + " --appearance off --quiet", &log), 0)
+      << log;
   // Unknown option values are refused by the command line.
   EXPECT_NE(run_simcap("track " + dataset().string() + out + " --silhouettes magic", &log), 0);
+  EXPECT_NE(run_simcap("track " + dataset().string() + out + " --appearance maybe", &log), 0);
 }
 
 }  // namespace
