@@ -72,8 +72,12 @@ TrackSummary run_moschini(const fs::path& dataset_path, const TrackOptions& opti
   const bool compare_masks =
       method != SilhouetteMethod::gt && fs::is_directory(ds.root() / ds.cameras()[0].name / "mask");
 
+  if (options.filter != "none" && options.filter != "ekf") {
+    throw Error("--filter: unknown filter '" + options.filter + "' (expected none or ekf)");
+  }
   TrackerOptions topt;
   topt.joints = parse_joint_set(options.joints);
+  topt.use_filter = options.filter == "ekf";
   std::optional<MoschiniTracker> tracker;
   if (options.init == "gt") {
     // The first frame's joints give the sticks, the pose, and where the hull's centerline runs

@@ -23,6 +23,10 @@ struct TrackOptions {
   // the parts its colour may show: "on" | "off"; empty: on with --init gt, off with --init auto
   // (whose first pose is only a rough upright fit, too rough to learn from).
   std::string appearance;
+  // moschini: "none" (the fitted pose is the estimate and the next frame's start) or "ekf"
+  // (Moschini's EKF smooths it; with its random-walk model it lags a moving body, which costs
+  // 1-18 mm on simcap's datasets, tracker/MOSCHINI.md).
+  std::string filter = "none";
   bool quiet = false;
   double sik_noise_m = 0.0;  // sik: Gaussian noise on the end-effectors, metres
   std::uint64_t seed = 1;    // sik: seed of that noise

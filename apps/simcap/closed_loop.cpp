@@ -134,6 +134,10 @@ LoopRun loop_run_of(const LoopConfig& c, const fs::path& sweep_file, bool quiet)
       run.track.silhouettes = value;
     } else if (name == "init") {
       run.track.init = value;
+    } else if (name == "appearance") {
+      run.track.appearance = value;
+    } else if (name == "filter") {
+      run.track.filter = value;
     } else if (name == "voxel_m") {
       run.track.voxel_m = parse_option<double>(sweep_file, name, value);
     } else if (name == "sik_noise_m") {
@@ -142,8 +146,8 @@ LoopRun loop_run_of(const LoopConfig& c, const fs::path& sweep_file, bool quiet)
       run.track.seed = parse_option<std::uint64_t>(sweep_file, name, value);
     } else {
       throw_input_error(sweep_file, 0, "track." + name,
-                        "unknown tracker option; expected method, silhouettes, init, voxel_m, "
-                        "sik_noise_m or seed");
+                        "unknown tracker option; expected method, silhouettes, init, appearance, "
+                        "filter, voxel_m, sik_noise_m or seed");
     }
   }
   return run;

@@ -44,6 +44,11 @@ void add_track(CLI::App& app, Action& action) {
                   "pixel only meets the parts it may show (an arm in front of the torso); default: "
                   "on with --init gt, off with --init auto")
       ->check(CLI::IsMember({"on", "off"}));
+  cmd->add_option("--filter", options->filter,
+                  "moschini: none (each frame's fit is the estimate) or ekf (Moschini's EKF "
+                  "smooths the fits; it lags a moving body)")
+      ->check(CLI::IsMember({"none", "ekf"}))
+      ->capture_default_str();
   cmd->add_option("--sik-noise", options->sik_noise_m,
                   "sik: standard deviation of the noise added to the end-effectors, metres")
       ->check(CLI::Range(0.0, 1.0))
@@ -55,6 +60,7 @@ void add_track(CLI::App& app, Action& action) {
       "  simcap track out/studio4 -o out/track\n"
       "  simcap track out/studio4 -o out/track_bg --silhouettes bgsub --init auto\n"
       "  simcap track out/studio4 -o out/track_masks --appearance off\n"
+      "  simcap track out/studio4 -o out/track_thesis --filter ekf --joints moschini\n"
       "  simcap track out/studio4 -o out/track_sik --method sik --sik-noise 0.02\n"
       "Writes TRACK/joints3d.csv (frame,joint,x,y,z; the HE15 joints in H-Anim names) and\n"
       "TRACK/diagnostics/: centerline.csv, timings.csv, reinitializations.csv,\n"

@@ -74,6 +74,17 @@ TEST(TrackJob, TracksTheCapsuleBodyWithGroundTruthSilhouettes) {
   EXPECT_EQ(read_text(out / "t" / "joints3d.csv"), read_text(out / "v" / "joints3d.csv"));
 }
 
+TEST(TrackJob, RunsMoschinisEkfOnHisJointSet) {
+  TempDir out;
+  std::string log;
+  ASSERT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / "t").string() +
+                           " --filter ekf --joints moschini --quiet",
+                       &log),
+            0)
+      << log;
+  EXPECT_LT(mpjpe_mm(dataset() / "gt" / "joints3d.csv", out / "t" / "joints3d.csv"), 60.0);
+}
+
 TEST(TrackJob, SubtractedSilhouettesAreScoredAgainstTheMasks) {
   TempDir out;
   std::string log;
@@ -157,6 +168,7 @@ TEST(TrackJob, BadDatasetsGiveClearErrors) {
   // Unknown option values are refused by the command line.
   EXPECT_NE(run_simcap("track " + dataset().string() + out + " --silhouettes magic", &log), 0);
   EXPECT_NE(run_simcap("track " + dataset().string() + out + " --appearance maybe", &log), 0);
+  EXPECT_NE(run_simcap("track " + dataset().string() + out + " --filter kalman", &log), 0);
 }
 
 }  // namespace

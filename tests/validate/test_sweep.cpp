@@ -117,7 +117,7 @@ TEST(Sweep, BadFilesAreNamed) {
 }
 
 TEST(Sweep, ShippedSweepsLoad) {
-  for (const char* name : {"cameras.yaml", "occlusion.yaml", "silhouettes.yaml"}) {
+  for (const char* name : {"cameras.yaml", "occlusion.yaml", "silhouettes.yaml", "tracker.yaml"}) {
     const SweepSpec spec = load_sweep(fs::path(SIMCAP_SOURCE_DIR) / "stress" / name);
     EXPECT_GE(sweep_points(spec).size(), 2u) << name;
   }
