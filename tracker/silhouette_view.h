@@ -14,7 +14,7 @@ class SilhouetteView {
   // `silhouette`: 8-bit, non-zero on the person. `camera` must outlive the view. The map covers
   // the silhouette's bounding box grown by `margin_px`; beyond it, the nearest pixel of the box's
   // edge stands in (the pull still points at the silhouette).
-  SilhouetteView(const Camera& camera, const cv::Mat& silhouette, int margin_px = 48);
+  SilhouetteView(const Camera& camera, const cv::Mat& silhouette, int margin_px = 24);
   const Camera& camera() const { return *camera_; }
   bool empty() const { return nearest_.empty(); }
   // Image pixel (column, row) of the silhouette pixel nearest to (u, v), which must lie in the
