@@ -303,8 +303,6 @@ BodyDimensions dimensions_from_height(double height_m) {
   for (int i = 0; i < s.size(); ++i) joints[s[i].name] = p[i];
   BodyDimensions d =
       dimensions_from_joints(joints, "humanoid of height " + std::to_string(height_m));
-  d.d_s = 0.8;
-  d.d_h = 0.7;
   set_typical_radii(d);
   return d;
 }

@@ -50,8 +50,9 @@ void measure_radii(BodyDimensions& dims, JointSet joints, const StickPose& pose,
                    const std::vector<SilhouetteRay>& rays);
 
 // Dimensions for a person of `height_m`: simcap's humanoid (Drillis-Contini proportions)
-// scaled to that height, with Table 5.3's d_s = 0.8 and d_H = 0.7 for the torso and typical
-// radii.
+// scaled to that height, shoulders and hips included, and typical radii. (Table 5.3's d_s = 0.8
+// and d_H = 0.7 describe HumanEva's joint centres: on H-Anim's they put the shoulders 8 cm low
+// and the hips 4 cm wide.)
 BodyDimensions dimensions_from_height(double height_m);
 
 // What the hull says about a person standing upright on the floor y = 0.

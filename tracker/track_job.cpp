@@ -49,10 +49,10 @@ TrackSummary run_moschini(const fs::path& dataset_path, const TrackOptions& opti
   PerceptionOptions popt;
   popt.hull.voxel_m = options.voxel_m;
   popt.hull.volume = working_volume(ds);
-  if (!options.appearance.empty() && options.appearance != "on" && options.appearance != "off") {
+  if (options.appearance != "on" && options.appearance != "off") {
     throw Error("--appearance: unknown value '" + options.appearance + "' (expected on or off)");
   }
-  popt.colours = options.appearance.empty() ? options.init == "gt" : options.appearance == "on";
+  popt.colours = options.appearance == "on";
   Perception perception(ds, method, popt);
   std::vector<int> frames = ds.frames(perception.silhouettes().image_kind());
   if (popt.colours && perception.silhouettes().image_kind() != "rgb") {

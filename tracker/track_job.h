@@ -20,9 +20,8 @@ struct TrackOptions {
   std::string joints = "urdf";      // moschini (Table 5.1, 23-parameter EKF) | urdf (+ hip twists)
   double voxel_m = 0.02;
   // moschini: learn the parts' colours on the first frame and let each silhouette ray meet only
-  // the parts its colour may show: "on" | "off"; empty: on with --init gt, off with --init auto
-  // (whose first pose is only a rough upright fit, too rough to learn from).
-  std::string appearance;
+  // the parts its colour may show: "on" | "off".
+  std::string appearance = "on";
   // moschini: "none" (the fitted pose is the estimate and the next frame's start) or "ekf"
   // (Moschini's EKF smooths it; with its random-walk model it lags a moving body, which costs
   // 1-18 mm on simcap's datasets, tracker/MOSCHINI.md).

@@ -41,9 +41,9 @@ void add_track(CLI::App& app, Action& action) {
       ->capture_default_str();
   cmd->add_option("--appearance", options->appearance,
                   "moschini: learn the parts' colours on the first frame so that a silhouette "
-                  "pixel only meets the parts it may show (an arm in front of the torso); default: "
-                  "on with --init gt, off with --init auto")
-      ->check(CLI::IsMember({"on", "off"}));
+                  "pixel only meets the parts it may show (an arm in front of the torso)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   cmd->add_option("--filter", options->filter,
                   "moschini: none (each frame's fit is the estimate) or ekf (Moschini's EKF "
                   "smooths the fits; it lags a moving body)")
