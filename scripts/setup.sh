@@ -2,11 +2,14 @@
 # Installs exactly the Debian 12 packages simcap builds against; skips apt when all are present.
 set -euo pipefail
 
+# openimageio-tools: Debian's OpenImageIOConfig.cmake imports its programs (/usr/bin/iconvert),
+# so find_package(OpenImageIO) fails without them, and libopenimageio-dev only recommends them.
 packages=(
   build-essential cmake ninja-build pkg-config ccache
   libembree-dev libopenimageio-dev libassimp-dev libeigen3-dev libopencv-dev
   liburdfdom-dev liburdfdom-tools libtbb-dev libyaml-cpp-dev nlohmann-json3-dev
   libpugixml-dev libcli11-dev googletest libgtest-dev libbenchmark-dev libpng-dev
+  openimageio-tools
 )
 
 missing=()
