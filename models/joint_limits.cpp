@@ -31,6 +31,14 @@ DofLimit direct(std::string name, const Eigen::Vector3d& axis, double lower, dou
   return converted(std::move(name), axis, lower, upper, 1.0, 0.0, std::move(source));
 }
 
+// A DOF about Y or Z, whose motions have opposite signs on the two sides: [lower, upper] degrees
+// on the left (sign 1), mirrored on the right (sign -1).
+DofLimit sided(std::string name, const Eigen::Vector3d& axis, double sign, double lower,
+               double upper, std::string source) {
+  const double a = sign * deg(lower), b = sign * deg(upper);
+  return direct(std::move(name), axis, std::min(a, b), std::max(a, b), std::move(source));
+}
+
 // Moschini's torso frame has X forward, Y to the left and Z up (Table 5.3: the head is at +Z,
 // the left shoulder at +Y), so his X, Y, Z are simcap's Z, X, Y. His zero pose has the arms
 // straight out to the sides: his shoulder chain R_x(t1) R_z(t2) R_y(t3) in his axes equals
@@ -132,7 +140,6 @@ const DofLimit& pick(const std::vector<JointLimits>& table, std::string_view dof
 // are shared equally among the simcap joints of the region (a simcap choice).
 std::vector<JointLimits> make_humanoid() {
   const auto& mo = moschini_joint_limits();
-  const auto& go = gomez_joint_limits();
   const std::string aaos = "AAOS 1965 (Norkin & White App. A): ";
   std::vector<JointLimits> out;
 
@@ -176,13 +183,11 @@ std::vector<JointLimits> make_humanoid() {
                            aaos + "hip medial rotation 45, lateral rotation 45 deg")}});
     out.push_back({s + "knee", {pick(mo, s + "knee_flexion")}});
     // Inversion turns the sole towards the midline: negative about +Z on the left foot.
-    out.push_back(
-        {s + "talocrural",
-         {direct(s + "talocrural_inversion", kZ, std::min(sign * deg(-35), sign * deg(15)),
-                 std::max(sign * deg(-35), sign * deg(15)),
-                 aaos + "inversion 35, eversion 15 deg (subtalar, lumped into the ankle)"),
-          direct(s + "talocrural_flexion", kX, deg(-20), deg(50),
-                 aaos + "dorsiflexion 20, plantar flexion 50 deg")}});
+    out.push_back({s + "talocrural",
+                   {sided(s + "talocrural_inversion", kZ, sign, -35, 15,
+                          aaos + "inversion 35, eversion 15 deg (subtalar, lumped into the ankle)"),
+                    direct(s + "talocrural_flexion", kX, deg(-20), deg(50),
+                           aaos + "dorsiflexion 20, plantar flexion 50 deg")}});
     out.push_back({s + "metatarsophalangeal_2",
                    {direct(s + "metatarsophalangeal_2_flexion", kX, deg(-40), deg(40),
                            aaos + "lesser toes MTP flexion 40, extension 40 deg")}});
@@ -190,20 +195,27 @@ std::vector<JointLimits> make_humanoid() {
   for (const auto& [side, sign] : {std::pair{"l_", 1.0}, std::pair{"r_", -1.0}}) {
     const std::string s(side);
     const std::string neumann = "Neumann 2010, Kinesiology of the Musculoskeletal System, ch. 5: ";
-    out.push_back(
-        {s + "sternoclavicular",
-         {direct(s + "sternoclavicular_elevation", kZ, std::min(sign * deg(-10), sign * deg(45)),
-                 std::max(sign * deg(-10), sign * deg(45)),
-                 neumann + "elevation 45, depression 10 deg"),
-          direct(s + "sternoclavicular_protraction", kY, deg(-15), deg(15),
-                 neumann + "protraction and retraction 15 deg each")}});
+    out.push_back({s + "sternoclavicular",
+                   {sided(s + "sternoclavicular_elevation", kZ, sign, -10, 45,
+                          neumann + "elevation 45, depression 10 deg"),
+                    direct(s + "sternoclavicular_protraction", kY, deg(-15), deg(15),
+                           neumann + "protraction and retraction 15 deg each")}});
     out.push_back({s + "shoulder",
                    {pick(mo, s + "shoulder_abduction"), pick(mo, s + "shoulder_flexion"),
                     pick(mo, s + "shoulder_twist")}});
     out.push_back({s + "elbow", {pick(mo, s + "elbow_flexion")}});
-    out.push_back({s + "radiocarpal",
-                   {pick(go, s + "radiocarpal_flexion"), pick(go, s + "radiocarpal_pivot"),
-                    pick(go, s + "radiocarpal_twist")}});
+    // The hand hangs palm to thigh: flexion turns the fingers towards the midline (negative
+    // about +Z on the left), radial deviation towards the thumb in front (negative about +X).
+    // Gomez Jauregui's Table 2-1 keeps his avatar's wrists within 20 deg of flexion; real
+    // motion goes much further (CMU 131_01 bends its wrists by 35-43 deg on average).
+    out.push_back(
+        {s + "radiocarpal",
+         {sided(s + "radiocarpal_flexion", kZ, sign, -80, 70,
+                aaos + "wrist flexion 80, extension 70 deg"),
+          direct(s + "radiocarpal_pivot", kX, deg(-20), deg(30),
+                 aaos + "wrist radial deviation 20, ulnar deviation 30 deg"),
+          direct(s + "radiocarpal_twist", kY, deg(-80), deg(80),
+                 aaos + "forearm pronation 80, supination 80 deg (lumped into the wrist)")}});
   }
   return out;
 }

@@ -40,7 +40,7 @@ struct JointLimits {
 
 // The limits simcap uses (URDF, inverse kinematics): every non-site joint of build_humanoid()
 // except humanoid_root. Moschini's Table 5.1 for neck (vc7), shoulders, elbows, hips and knees;
-// Gomez Jauregui's Table 2-1 for the wrists; AAOS and other anatomical ranges for the rest.
+// AAOS and other anatomical ranges for the rest, wrists included.
 const std::vector<JointLimits>& humanoid_joint_limits();
 
 // Moschini 2009, Table 5.1 (16 angles, "hard constraints" of the multi-camera tracker), mapped
