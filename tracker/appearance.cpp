@@ -12,8 +12,8 @@ namespace simcap::tracker {
 namespace {
 
 // Left and right limbs are dressed alike; the kinds of part that may differ in colour.
-constexpr int kKinds = 6;
-constexpr std::array<int, kSegmentCount> kKindOf = {0, 1, 2, 3, 2, 3, 4, 5, 4, 5};
+constexpr int kKinds = 9;
+constexpr std::array<int, kSegmentCount> kKindOf = {0, 1, 2, 3, 4, 5, 3, 4, 5, 6, 7, 8, 6, 7, 8};
 
 struct Component {
   Eigen::Vector2d mean;
@@ -28,25 +28,25 @@ std::optional<Eigen::Vector2d> chromaticity(const Eigen::Vector3d& colour, doubl
   return Eigen::Vector2d(colour(0), colour(1)) / sum;
 }
 
-// The part a ray shows: the front-most capsule it passes, if it passes that one well inside.
-int shown_part(const StickGeometry& g, const BodyDimensions& dims, const SilhouetteRay& ray,
-               double inside_fraction) {
+// The part a ray shows: that of the front-most capsule it passes, if it passes that one well
+// inside.
+int shown_part(const PlacedSurface& surface, const SilhouetteRay& ray, double inside_fraction) {
   int front = -1;
   double front_depth = std::numeric_limits<double>::infinity(), front_d = 0, front_reach = 0;
-  for (int s = 0; s < kSegmentCount; ++s) {
-    if (dims.radius[s] <= 0) continue;
-    const Eigen::Vector3d q = nearest_on_ray(ray, g.line_proximal[s], g.line_distal[s]);
+  for (int c = 0; c < kCapsuleCount; ++c) {
+    const PlacedCapsule& capsule = surface[c];
+    const Eigen::Vector3d q = nearest_on_ray(ray, capsule.a, capsule.a + capsule.ab);
     double d;
     Eigen::Vector3d dir;
-    if (!capsule_distance(g, dims, s, q, &d, &dir) || d > 0.02) continue;
-    const double reach = s == kTorso ? std::min(dims.radius[s], dims.torso_width) : dims.radius[s];
+    if (!capsule.distance(q, &d, &dir) || d > 0.02) continue;
+    const double reach = capsule.radius(capsule.along(q));
     // Where the ray enters the capsule, for a circular section of radius `reach`.
     const double axis = std::max(0.0, reach + d);
     const double depth =
         (q - ray.origin).dot(ray.direction) - std::sqrt(std::max(0.0, reach * reach - axis * axis));
-    if (depth < front_depth) front = s, front_depth = depth, front_d = d, front_reach = reach;
+    if (depth < front_depth) front = c, front_depth = depth, front_d = d, front_reach = reach;
   }
-  return front >= 0 && front_d < -inside_fraction * front_reach ? front : -1;
+  return front >= 0 && front_d < -inside_fraction * front_reach ? surface[front].segment : -1;
 }
 
 // The materials the body is dressed in (shirt, skin, trousers...): OpenCV's k-means on all
@@ -99,14 +99,14 @@ std::vector<Component> materials(const std::vector<Eigen::Vector2d>& colours,
 
 AppearanceModel::AppearanceModel() : table_(1 << 15, kAllParts) {}
 
-AppearanceModel::AppearanceModel(const StickModel& model, const StickPose& pose,
-                                 const std::vector<SilhouetteRay>& rays,
+AppearanceModel::AppearanceModel(const StickModel& model, const BodySurface& surface,
+                                 const StickPose& pose, const std::vector<SilhouetteRay>& rays,
                                  const AppearanceOptions& options)
     : AppearanceModel() {
-  const StickGeometry g = model.geometry(pose);
+  const PlacedSurface placed = place(surface, model.geometry(pose));
   std::array<std::vector<Eigen::Vector2d>, kKinds> colours;
   for (const SilhouetteRay& ray : rays) {
-    const int s = shown_part(g, model.dimensions(), ray, options.inside_fraction);
+    const int s = shown_part(placed, ray, options.inside_fraction);
     const auto c = chromaticity(Eigen::Vector3d(ray.colour[0], ray.colour[1], ray.colour[2]),
                                 options.min_brightness);
     if (s >= 0 && c) colours[kKindOf[s]].push_back(*c);

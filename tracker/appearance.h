@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "tracker/body_surface.h"
 #include "tracker/icp_targets.h"
 #include "tracker/stick_model.h"
 
@@ -31,7 +32,7 @@ class AppearanceModel {
   AppearanceModel();
   // From the rays of one frame (with their colours) and the pose of that frame. Left and right
   // parts share one model: a limb hidden on this frame takes its partner's colours.
-  AppearanceModel(const StickModel& model, const StickPose& pose,
+  AppearanceModel(const StickModel& model, const BodySurface& surface, const StickPose& pose,
                   const std::vector<SilhouetteRay>& rays, const AppearanceOptions& options = {});
   // The parts (bit s = Segment s) a pixel of this colour may show; every part when the colour
   // fits none of the learned ones (a foot, a shadow).

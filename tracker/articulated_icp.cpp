@@ -21,8 +21,9 @@ void match_all(const StickGeometry& g, const std::vector<Eigen::Vector3d>& point
 
 }  // namespace
 
-ArticulatedIcp::ArticulatedIcp(const StickModel& model, const IcpOptions& options)
-    : model_(&model), options_(options) {}
+ArticulatedIcp::ArticulatedIcp(const StickModel& model, const BodySurface& surface,
+                               const IcpOptions& options)
+    : model_(&model), options_(options), refiner_(model, surface, options.refine) {}
 
 int ArticulatedIcp::fit_segment(int segment, const std::vector<Eigen::Vector3d>& points,
                                 StickPose& pose, std::vector<ClosestStick>& closest,
@@ -45,7 +46,7 @@ int ArticulatedIcp::fit_segment(int segment, const std::vector<Eigen::Vector3d>&
       const ClosestStick& c = closest[i];
       if (c.distance > limit) continue;
       double wi = 0;
-      if (c.segment == segment) {
+      if (model_->moving_segment(c.segment) == segment) {
         wi = 1.0;
       } else if (is_strict_descendant(c.segment, segment)) {
         wi = options_.descendant_weight;
@@ -77,7 +78,7 @@ int ArticulatedIcp::fit_segment(int segment, const std::vector<Eigen::Vector3d>&
     const auto a = A.leftCols(m);
     const auto b = B.leftCols(m);
     const auto ww = w.head(m);
-    if (segment == kTorso) {
+    if (segment == kPelvis) {
       const RigidMotion motion = weop(a, b, ww);
       pose.R0 = motion.R * pose.R0;
       pose.t0 = motion.R * pose.t0 + motion.t;
@@ -104,10 +105,12 @@ int ArticulatedIcp::fit_segment(int segment, const std::vector<Eigen::Vector3d>&
           c += w2 * b0.col(i).dot(q - q.dot(k) * k);
           s += w2 * b0.col(i).dot(k.cross(q));
         }
-        // Spinning by φ about the stick's world direction (its frame's -Y) changes the twist
-        // angle by -φ.
+        // Spinning by φ about the stick's world direction changes the twist angle by -φ for a
+        // stick along its frame's -Y (a limb), by φ along +Y (the chest).
         const AngleRange& range = model_->ranges()[twist];
-        const double lo = pose.theta[twist] - range.hi, hi = pose.theta[twist] - range.lo;
+        const bool down = model_->direction(segment).y() < 0;
+        const double lo = down ? pose.theta[twist] - range.hi : range.lo - pose.theta[twist];
+        const double hi = down ? pose.theta[twist] - range.lo : range.hi - pose.theta[twist];
         spin = std::clamp(std::atan2(s, c), lo, hi);
         const double other = spin == lo ? hi : lo;
         if (c * std::cos(other) + s * std::sin(other) > c * std::cos(spin) + s * std::sin(spin)) {
@@ -129,10 +132,12 @@ IcpResult ArticulatedIcp::fit(const IcpTargets& targets, StickPose& pose) const 
   std::vector<double> distances;
   for (int sweep = 0; sweep < options_.sweeps; ++sweep) {
     for (int s = 0; s < kSegmentCount; ++s) {
+      // A segment without angles moves with its parent, whose fit counts its points fully.
+      if (model_->moving_segment(s) != s) continue;
       result.iterations += fit_segment(s, points, pose, closest, distances);
     }
   }
-  PoseRefiner(*model_, options_.refine).refine(targets, pose);
+  refiner_.refine(targets, pose);
   const IcpResult final_fit = evaluate(points, pose);
   result.mean_distance_m = final_fit.mean_distance_m;
   result.inlier_fraction = final_fit.inlier_fraction;

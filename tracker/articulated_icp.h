@@ -36,7 +36,8 @@ struct IcpResult {
 
 class ArticulatedIcp {
  public:
-  explicit ArticulatedIcp(const StickModel& model, const IcpOptions& options = {});
+  ArticulatedIcp(const StickModel& model, const BodySurface& surface,
+                 const IcpOptions& options = {});
   // Registers the model, starting at `pose`, onto the targets' centerline points (Alg. 2), then
   // refines all parameters jointly against every target (PoseRefiner); updates `pose`.
   IcpResult fit(const IcpTargets& targets, StickPose& pose) const;
@@ -49,6 +50,7 @@ class ArticulatedIcp {
                   std::vector<ClosestStick>& closest, std::vector<double>& distances) const;
   const StickModel* model_;
   IcpOptions options_;
+  PoseRefiner refiner_;
 };
 
 }  // namespace simcap::tracker

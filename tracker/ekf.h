@@ -1,4 +1,5 @@
-// Moschini's extended Kalman filter (§5.1.3, §5.2, Alg. 3) over the 23-parameter body state:
+// Moschini's extended Kalman filter (§5.1.3, §5.2, Alg. 3) over the 23-parameter body state (34
+// with the URDF joint set):
 // a random walk (A = I) corrected by the 15 reference points the articulated ICP measured.
 #pragma once
 
@@ -18,16 +19,18 @@ struct FilterNoise {
   double initial_angle_rad = 0.10;
   double position_m = 0.04;    // torso translation per frame
   double rotation_rad = 0.10;  // torso rotation per frame
+  // Per JointAngle: neck, shoulders, elbows, hips, knees, hip twists, spine, ankles, wrists.
   std::array<double, kMaxAngles> angle_rad = {0.15, 0.15, 0.25, 0.25, 0.25, 0.25, 0.30, 0.30, 0.30,
-                                              0.30, 0.20, 0.20, 0.20, 0.20, 0.30, 0.30, 0.20, 0.20};
+                                              0.30, 0.20, 0.20, 0.20, 0.20, 0.30, 0.30, 0.20, 0.20,
+                                              0.05, 0.05, 0.05, 0.30, 0.30, 0.30, 0.30, 0.30, 0.30};
   std::array<double, kReferencePointCount> measurement_m = {0.015, 0.025, 0.02,  0.02,  0.02,
                                                             0.02,  0.02,  0.025, 0.025, 0.025,
                                                             0.025, 0.03,  0.03,  0.03,  0.03};
   int iterations = 2;  // iterated EKF: Gauss-Newton steps of the correction
 };
 
-// The state is x = [t0 ω0 θ0 θ1 ... θn] (eq. 5.47): 23 parameters for Moschini's joint set, 25
-// with the URDF's hip twists.
+// The state is x = [t0 ω0 θ0 θ1 ... θn] (eq. 5.47): 23 parameters for Moschini's joint set, 34
+// with the URDF's hip twists, spine, ankles and wrists.
 class PoseFilter {
  public:
   static constexpr int kMeasurementSize = 3 * kReferencePointCount;

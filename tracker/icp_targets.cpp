@@ -68,27 +68,4 @@ Eigen::Vector3d nearest_on_ray(const SilhouetteRay& ray, const Eigen::Vector3d& 
   return on_ray(t);
 }
 
-bool capsule_distance(const StickGeometry& g, const BodyDimensions& dims, int s,
-                      const Eigen::Vector3d& v, double* d, Eigen::Vector3d* dir) {
-  const Eigen::Vector3d ab = g.line_distal[s] - g.line_proximal[s];
-  const double t = std::clamp((v - g.line_proximal[s]).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  const Eigen::Vector3d dv = v - g.line_proximal[s] - t * ab;
-  if (s == kTorso && dims.torso_width > 0 && t > 0 && t < 1) {
-    // First-order distance to the ellipse x²/a² + z²/b² = 1 in the torso's frame.
-    const Eigen::Matrix3d& R0 = g.rotation[kTorso];
-    const Eigen::Vector3d p = R0.transpose() * dv;
-    const double a = dims.torso_width, b = dims.radius[kTorso];
-    const double rho = std::hypot(p.x() / a, p.z() / b);
-    const Eigen::Vector3d grad(p.x() / (a * a), 0, p.z() / (b * b));
-    if (!(rho > 1e-9) || grad.norm() < 1e-12) return false;
-    *d = (rho - 1) * rho / grad.norm();
-    *dir = R0 * grad.normalized();
-    return true;
-  }
-  if (dv.norm() < 1e-9) return false;
-  *d = dv.norm() - dims.radius[s];
-  *dir = dv.normalized();
-  return true;
-}
-
 }  // namespace simcap::tracker

@@ -60,11 +60,6 @@ ClosestStick closest_stick(const StickGeometry& g, const Eigen::Vector3d& x);
 Eigen::Vector3d nearest_on_ray(const SilhouetteRay& ray, const Eigen::Vector3d& a,
                                const Eigen::Vector3d& b);
 
-// Signed distance of `v` to the capsule of segment `s` (an elliptic cylinder along the torso's
-// middle), with the outward normal `dir` there; false where the normal is undefined (on the axis).
-bool capsule_distance(const StickGeometry& g, const BodyDimensions& dims, int s,
-                      const Eigen::Vector3d& v, double* d, Eigen::Vector3d* dir);
-
 // The X84 threshold on distances: med + k · 1.4826 · med|e - med|, but never below `floor`:
 // near convergence on clean data the MAD shrinks towards 0 and X84 would reject the very points
 // that still pull a limb into place.

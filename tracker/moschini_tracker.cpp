@@ -15,11 +15,13 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-MoschiniTracker::MoschiniTracker(const BodyDimensions& dims, const TrackerOptions& options)
+MoschiniTracker::MoschiniTracker(const BodyDimensions& dims, const BodySurface& surface,
+                                 const TrackerOptions& options)
     : model_(dims, options.joints),
+      surface_(surface),
       options_(options),
-      icp_(model_, options.icp),
-      refiner_(model_, options.icp.refine),
+      icp_(model_, surface, options.icp),
+      refiner_(model_, surface, options.icp.refine),
       filter_(model_, options.filter) {}
 
 IcpTargets MoschiniTracker::targets_of(const Observation& obs) {
@@ -90,13 +92,19 @@ void MoschiniTracker::resolve_crossed_limbs(const IcpTargets& targets, StickPose
     std::vector<std::pair<int, int>> angles;  // left/right angles exchanged
   };
   const std::array<Pair, 2> pairs = {{
-      {{kLFoot, kLKneePoint},
-       {{kLHip1, kRHip1}, {kLHip2, kRHip2}, {kLHipTwist, kRHipTwist}, {kLKnee, kRKnee}}},
+      {{kLAnklePoint, kLKneePoint},
+       {{kLHip1, kRHip1},
+        {kLHip2, kRHip2},
+        {kLHipTwist, kRHipTwist},
+        {kLKnee, kRKnee},
+        {kLAnkle, kRAnkle}}},
       {{kLHandTip, kLElbowPoint},
        {{kLShoulder1, kRShoulder1},
         {kLShoulder2, kRShoulder2},
         {kLShoulder3, kRShoulder3},
-        {kLElbow, kRElbow}}},
+        {kLElbow, kRElbow},
+        {kLWristFlexion, kRWristFlexion},
+        {kLWristDeviation, kRWristDeviation}}},
   }};
   const double margin = 0.03;
   const auto& ranges = model_.ranges();

@@ -43,8 +43,10 @@ struct TrackStep {
 
 class MoschiniTracker {
  public:
-  MoschiniTracker(const BodyDimensions& dims, const TrackerOptions& options = {});
+  MoschiniTracker(const BodyDimensions& dims, const BodySurface& surface,
+                  const TrackerOptions& options = {});
   const StickModel& model() const { return model_; }
+  const BodySurface& surface() const { return surface_; }
 
   // Starts from a known pose (--init gt).
   void start(const StickPose& pose);
@@ -74,6 +76,7 @@ class MoschiniTracker {
   void resolve_crossed_limbs(const IcpTargets& targets, StickPose& pose) const;
 
   StickModel model_;
+  BodySurface surface_;
   TrackerOptions options_;
   ArticulatedIcp icp_;
   PoseRefiner refiner_;

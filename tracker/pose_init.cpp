@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "models/humanoid.h"
 #include "models/pose.h"
+#include "tracker/weop.h"
 
 namespace simcap::tracker {
 namespace {
@@ -38,11 +39,14 @@ Eigen::Matrix3d torso_frame(const NamedJoints& j, const std::string& source) {
   return R;
 }
 
-// Ratios of the neutral humanoid for sticks whose far end the HE15 set lacks.
+// Ratios of the neutral humanoid for what the HE15 set lacks.
 struct NeutralRatios {
   double skullbase_fraction;  // along vc7 -> skull_tip
   double hand_per_forearm;    // |hand_tip - wrist| / |wrist - elbow|
   double root_above_hips;     // per unit torso length (hip midpoint to vc7)
+  double spine_pivot;         // vl1 above the torso centroid, per unit torso length
+  double foot_per_calf;       // |metatarsophalangeal_2 - talocrural| / |talocrural - knee|
+  double foot_pitch;          // the ball of the foot below the ankle's level, radians
 };
 const NeutralRatios& neutral_ratios() {
   static const NeutralRatios r = [] {
@@ -50,11 +54,16 @@ const NeutralRatios& neutral_ratios() {
     const auto p = joint_positions(s, Pose::neutral(s));
     auto at = [&](const char* n) { return p[s.require(n)]; };
     const Eigen::Vector3d hip_mid = 0.5 * (at("l_hip") + at("r_hip"));
+    const double torso = (at("vc7") - hip_mid).norm();
+    const Eigen::Vector3d foot = at("l_metatarsophalangeal_2") - at("l_talocrural");
     return NeutralRatios{
         (at("skullbase") - at("vc7")).norm() / (at("skull_tip") - at("vc7")).norm(),
         (at("l_hand_tip") - at("l_radiocarpal")).norm() /
             (at("l_radiocarpal") - at("l_elbow")).norm(),
-        (at("humanoid_root") - hip_mid).y() / (at("vc7") - hip_mid).norm()};
+        (at("humanoid_root") - hip_mid).y() / torso,
+        (at("vl1").y() - 0.5 * (hip_mid.y() + at("vc7").y())) / torso,
+        foot.norm() / (at("l_talocrural") - at("l_knee")).norm(),
+        std::atan2(-foot.y(), foot.z())};
   }();
   return r;
 }
@@ -119,6 +128,9 @@ BodyDimensions dimensions_from_joints(const NamedJoints& j, const std::string& s
   d.hip_forward = 0.5 * (lh.z() + rh.z());
   d.root_above_hips = j.count("humanoid_root") ? (at("humanoid_root") - hip_mid).dot(R.col(1))
                                                : ratio.root_above_hips * 2 * d.torso_half;
+  d.root_forward = j.count("humanoid_root") ? (at("humanoid_root") - hip_mid).dot(R.col(2)) : 0.0;
+  d.spine_pivot =
+      j.count("vl1") ? (at("vl1") - centroid).dot(R.col(1)) : ratio.spine_pivot * 2 * d.torso_half;
   if (j.count("skull_tip")) {
     d.head = dist("skull_tip", "vc7");
     d.skullbase_fraction = dist("skullbase", "vc7") / d.head;
@@ -127,16 +139,17 @@ BodyDimensions dimensions_from_joints(const NamedJoints& j, const std::string& s
     d.head = dist("skullbase", "vc7") / d.skullbase_fraction;
   }
   d.upper_arm = 0.5 * (dist("l_elbow", "l_shoulder") + dist("r_elbow", "r_shoulder"));
-  const double forearm =
-      0.5 * (dist("l_radiocarpal", "l_elbow") + dist("r_radiocarpal", "r_elbow"));
-  const double hand =
-      j.count("l_hand_tip") && j.count("r_hand_tip")
-          ? 0.5 * (dist("l_hand_tip", "l_radiocarpal") + dist("r_hand_tip", "r_radiocarpal"))
-          : forearm * ratio.hand_per_forearm;
-  d.forearm = forearm + hand;
-  d.wrist_fraction = forearm / d.forearm;
+  d.forearm = 0.5 * (dist("l_radiocarpal", "l_elbow") + dist("r_radiocarpal", "r_elbow"));
+  d.hand = j.count("l_hand_tip") && j.count("r_hand_tip")
+               ? 0.5 * (dist("l_hand_tip", "l_radiocarpal") + dist("r_hand_tip", "r_radiocarpal"))
+               : d.forearm * ratio.hand_per_forearm;
   d.thigh = 0.5 * (dist("l_knee", "l_hip") + dist("r_knee", "r_hip"));
   d.calf = 0.5 * (dist("l_talocrural", "l_knee") + dist("r_talocrural", "r_knee"));
+  d.foot = j.count("l_metatarsophalangeal_2") && j.count("r_metatarsophalangeal_2")
+               ? 0.5 * (dist("l_metatarsophalangeal_2", "l_talocrural") +
+                        dist("r_metatarsophalangeal_2", "r_talocrural"))
+               : ratio.foot_per_calf * d.calf;
+  d.foot_pitch = ratio.foot_pitch;
   try {
     d.validate();
   } catch (const Error& e) {
@@ -148,26 +161,73 @@ BodyDimensions dimensions_from_joints(const NamedJoints& j, const std::string& s
 StickPose pose_from_joints(const StickModel& model, const NamedJoints& j,
                            const std::string& source) {
   auto at = [&](const std::string& n) { return need(j, n, source); };
+  const BodyDimensions& d = model.dimensions();
+  // The trunk's joints where the model has them in its rest pose (root at the origin, unturned).
+  const StickGeometry rest = model.geometry(StickPose{});
+  const std::vector<std::pair<std::string, Eigen::Vector3d>> pelvis = {
+      {"humanoid_root",
+       rest.proximal[kPelvis] + Eigen::Vector3d(0, d.root_above_hips, d.root_forward)},
+      {"l_hip", rest.proximal[kLThigh]},
+      {"r_hip", rest.proximal[kRThigh]}};
+  const std::vector<std::pair<std::string, Eigen::Vector3d>> chest = {
+      {"vc7", rest.distal[kChest]},
+      {"l_shoulder", rest.proximal[kLUpperArm]},
+      {"r_shoulder", rest.proximal[kRUpperArm]}};
+  auto columns = [&](const auto& named, const Eigen::Vector3d& origin, Eigen::Matrix3Xd& model_pts,
+                     Eigen::Matrix3Xd& data_pts) {
+    const Eigen::Index n = model_pts.cols();
+    model_pts.conservativeResize(3, n + static_cast<Eigen::Index>(named.size()));
+    data_pts.conservativeResize(3, model_pts.cols());
+    for (size_t i = 0; i < named.size(); ++i) {
+      model_pts.col(n + i) = named[i].second;
+      data_pts.col(n + i) = at(named[i].first) - origin;
+    }
+  };
+  // The pelvis is the rigid motion that best maps its joints onto the data (and the chest's
+  // too when the spine has no joint); then the chest turns about the spine joint.
+  const bool spine = model.joint_dofs(kChest) > 0;
+  Eigen::Matrix3Xd A(3, 0), B(3, 0);
+  columns(pelvis, Eigen::Vector3d::Zero(), A, B);
+  if (!spine) columns(chest, Eigen::Vector3d::Zero(), A, B);
+  const RigidMotion trunk = weop(A, B, Eigen::VectorXd::Ones(A.cols()));
   StickPose pose;
-  pose.R0 = torso_frame(j, source);
-  pose.t0 = 0.5 * (0.5 * (at("l_hip") + at("r_hip")) + at("vc7"));
+  pose.R0 = trunk.R;
+  pose.t0 = trunk.t;
   pose.theta.fill(0.0);
+  if (spine) {
+    const StickGeometry g = model.geometry(pose);
+    const Eigen::Vector3d pivot = g.proximal[kChest];
+    Eigen::Matrix3Xd a(3, 0), b(3, 0);
+    columns(chest, pivot, a, b);
+    for (Eigen::Index i = 0; i < a.cols(); ++i) {
+      a.col(i) = pose.R0 * a.col(i) + pose.t0 - pivot;
+    }
+    model.set_segment_rotation(pose, kChest, wopp(a, b, Eigen::VectorXd::Ones(a.cols())) * pose.R0);
+  }
   point_segment(model, pose, kHead,
                 (j.count("skull_tip") ? at("skull_tip") : at("skullbase")) - at("vc7"));
-  const Eigen::Vector3d forward = pose.R0.col(2);
-  for (const auto& [side, upper, fore] : {std::tuple{std::string("l_"), kLUpperArm, kLForearm},
-                                          std::tuple{std::string("r_"), kRUpperArm, kRForearm}}) {
+  const StickGeometry trunk_pose = model.geometry(pose);
+  const Eigen::Vector3d chest_forward = trunk_pose.rotation[kChest].col(2);
+  for (const auto& [side, upper, fore, hand] :
+       {std::tuple{std::string("l_"), kLUpperArm, kLForearm, kLHand},
+        std::tuple{std::string("r_"), kRUpperArm, kRForearm, kRHand}}) {
     const Eigen::Vector3d arm = at(side + "elbow") - at(side + "shoulder");
     const Eigen::Vector3d forearm = at(side + "radiocarpal") - at(side + "elbow");
-    model.set_segment_rotation(pose, upper, limb_frame(arm, forearm, forward, 1.0));
+    model.set_segment_rotation(pose, upper, limb_frame(arm, forearm, chest_forward, 1.0));
     point_segment(model, pose, fore, forearm);
+    const std::string tip = side + "hand_tip";
+    if (j.count(tip)) point_segment(model, pose, hand, at(tip) - at(side + "radiocarpal"));
   }
-  for (const auto& [side, thigh, calf] : {std::tuple{std::string("l_"), kLThigh, kLCalf},
-                                          std::tuple{std::string("r_"), kRThigh, kRCalf}}) {
+  const Eigen::Vector3d pelvis_forward = pose.R0.col(2);
+  for (const auto& [side, thigh, calf, foot] :
+       {std::tuple{std::string("l_"), kLThigh, kLCalf, kLFoot},
+        std::tuple{std::string("r_"), kRThigh, kRCalf, kRFoot}}) {
     const Eigen::Vector3d femur = at(side + "knee") - at(side + "hip");
     const Eigen::Vector3d tibia = at(side + "talocrural") - at(side + "knee");
-    model.set_segment_rotation(pose, thigh, limb_frame(femur, tibia, forward, -1.0));
+    model.set_segment_rotation(pose, thigh, limb_frame(femur, tibia, pelvis_forward, -1.0));
     point_segment(model, pose, calf, tibia);
+    const std::string ball = side + "metatarsophalangeal_2";
+    if (j.count(ball)) point_segment(model, pose, foot, at(ball) - at(side + "talocrural"));
   }
   return pose;
 }
@@ -175,7 +235,7 @@ StickPose pose_from_joints(const StickModel& model, const NamedJoints& j,
 std::array<Eigen::Vector3d, kSegmentCount> measure_centerline_offsets(
     const StickModel& model, const StickPose& pose, const std::vector<Eigen::Vector3d>& points) {
   const StickGeometry g = model.geometry(pose);
-  std::array<std::vector<double>, 2> across[2];  // [torso, head][x, z]
+  std::array<std::vector<double>, 2> across[kHead + 1];  // [pelvis, chest, head][x, z]
   for (const Eigen::Vector3d& x : points) {
     int best = -1;
     double best_d = 0.15, best_t = 0;  // farther points are not this stick's
@@ -186,14 +246,14 @@ std::array<Eigen::Vector3d, kSegmentCount> measure_centerline_offsets(
       if (d < best_d) best = s, best_d = d, best_t = t;
     }
     // Only the middle of a stick: its ends mix with the neighbouring segments.
-    if ((best != kTorso && best != kHead) || best_t < 0.15 || best_t > 0.85) continue;
+    if ((!is_trunk(best) && best != kHead) || best_t < 0.15 || best_t > 0.85) continue;
     const Eigen::Vector3d ab = g.distal[best] - g.proximal[best];
     const Eigen::Vector3d r = g.rotation[best].transpose() * (x - g.proximal[best] - best_t * ab);
     across[best][0].push_back(r.x());
     across[best][1].push_back(r.z());
   }
   std::array<Eigen::Vector3d, kSegmentCount> offsets = no_offsets();
-  for (int s : {kTorso, kHead}) {
+  for (int s : {kPelvis, kChest, kHead}) {
     if (across[s][0].size() < 5) continue;
     for (int a = 0; a < 2; ++a) {
       auto& v = across[s][a];
@@ -204,96 +264,6 @@ std::array<Eigen::Vector3d, kSegmentCount> measure_centerline_offsets(
   return offsets;
 }
 
-namespace {
-
-// One pass of measure_radii: every ray goes to the part it passes most inside of, given the
-// radii so far (nearest axis alone would hand the torso's edge rays to an arm hanging beside it).
-void measure_radii_once(BodyDimensions& dims, const BodyDimensions& typical, const StickGeometry& g,
-                        const std::vector<SilhouetteRay>& rays) {
-  // A ray that meets a cylinder of radius r passes its axis at a distance uniform in [0, r] (the
-  // silhouette pixels are a uniform grid), so r is twice the median: the median shrugs off the
-  // rays that belong to another part yet pass this one more inside.
-  constexpr int kBins = 6;  // directions across the torso axis, folded into a quarter turn
-  std::array<std::vector<double>, kSegmentCount> d;
-  std::array<std::vector<double>, kBins> torso;
-  const double torso_reach = std::max(dims.radius[kTorso], dims.torso_width);
-  for (const SilhouetteRay& ray : rays) {
-    int best = -1;
-    double best_inside = std::numeric_limits<double>::infinity(), best_d = 0, best_t = 0;
-    Eigen::Vector3d across = Eigen::Vector3d::Zero();
-    for (int s = 0; s < kSegmentCount; ++s) {
-      const Eigen::Vector3d ab = g.line_distal[s] - g.line_proximal[s];
-      const Eigen::Vector3d q = nearest_on_ray(ray, g.line_proximal[s], g.line_distal[s]);
-      const double t = std::clamp((q - g.line_proximal[s]).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-      const Eigen::Vector3d r = q - g.line_proximal[s] - t * ab;
-      const double inside = r.norm() - (s == kTorso ? torso_reach : dims.radius[s]);
-      if (inside < best_inside)
-        best = s, best_inside = inside, best_d = r.norm(), best_t = t, across = r;
-    }
-    if (best < 0 || best_t < 0.2 || best_t > 0.8) continue;
-    d[best].push_back(best_d);
-    if (best != kTorso) continue;
-    const Eigen::Vector3d p = g.rotation[kTorso].transpose() * across;
-    const double angle = std::atan2(std::abs(p.z()), std::abs(p.x()));
-    torso[std::min(kBins - 1, static_cast<int>(angle / (std::numbers::pi / 2) * kBins))].push_back(
-        best_d);
-  }
-  auto twice_median = [](std::vector<double>& v) {
-    if (v.size() < 10) return 0.0;
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return 2 * v[v.size() / 2];
-  };
-  // A part that few rays reach, or a pose far enough off to hand it another part's rays, keeps
-  // (or stays near) its typical radius: a measurement outside [0.6, 1.6] of it is not trusted.
-  auto plausible = [](double measured, double prior) {
-    return measured > 0 ? std::clamp(measured, 0.6 * prior, 1.6 * prior) : prior;
-  };
-  for (int s = 0; s < kSegmentCount; ++s) {
-    dims.radius[s] = plausible(twice_median(d[s]), typical.radius[s]);
-  }
-  // The torso's reach h across its axis in direction (cos φ, sin φ) is the ellipse's support
-  // function, h² = a² cos² φ + b² sin² φ: least squares for a² (half-width) and b² (depth).
-  Eigen::Matrix2d A = Eigen::Matrix2d::Zero();
-  Eigen::Vector2d y = Eigen::Vector2d::Zero();
-  for (int k = 0; k < kBins; ++k) {
-    const double h = twice_median(torso[k]);
-    if (h <= 0) continue;
-    const double phi = (k + 0.5) / kBins * std::numbers::pi / 2;
-    const Eigen::Vector2d row(std::pow(std::cos(phi), 2), std::pow(std::sin(phi), 2));
-    A += row * row.transpose();
-    y += row * h * h;
-  }
-  dims.torso_width = plausible(dims.radius[kTorso], typical.torso_width);
-  if (std::abs(A.determinant()) > 1e-9) {
-    const Eigen::Vector2d ab2 = A.ldlt().solve(y);
-    if (ab2.x() > 0 && ab2.y() > 0) {
-      dims.torso_width = plausible(std::sqrt(ab2.x()), typical.torso_width);
-      dims.radius[kTorso] = plausible(std::sqrt(ab2.y()), typical.radius[kTorso]);
-    }
-  }
-}
-
-}  // namespace
-
-void set_typical_radii(BodyDimensions& dims) {
-  dims.radius = {0.6 * dims.shoulder_half, 0.3 * dims.head,       0.14 * dims.upper_arm,
-                 0.09 * dims.forearm,      0.14 * dims.upper_arm, 0.09 * dims.forearm,
-                 0.17 * dims.thigh,        0.13 * dims.calf,      0.17 * dims.thigh,
-                 0.13 * dims.calf};
-  dims.torso_width = 0.8 * dims.shoulder_half;
-}
-
-void measure_radii(BodyDimensions& dims, JointSet joints, const StickPose& pose,
-                   const std::vector<SilhouetteRay>& rays) {
-  const StickGeometry g = StickModel(dims, joints).geometry(pose);
-  BodyDimensions typical = dims;
-  set_typical_radii(typical);
-  dims.radius = typical.radius;
-  dims.torso_width = typical.torso_width;
-  // Each pass reassigns the rays with the radii of the one before.
-  for (int pass = 0; pass < 3; ++pass) measure_radii_once(dims, typical, g, rays);
-}
-
 BodyDimensions dimensions_from_height(double height_m) {
   BodyParameters body;
   body.height = height_m;
@@ -301,10 +271,7 @@ BodyDimensions dimensions_from_height(double height_m) {
   const auto p = joint_positions(s, Pose::neutral(s));
   NamedJoints joints;
   for (int i = 0; i < s.size(); ++i) joints[s[i].name] = p[i];
-  BodyDimensions d =
-      dimensions_from_joints(joints, "humanoid of height " + std::to_string(height_m));
-  set_typical_radii(d);
-  return d;
+  return dimensions_from_joints(joints, "humanoid of height " + std::to_string(height_m));
 }
 
 UprightCue upright_cue(const Occupancy& hull, const BodyDimensions& dims) {

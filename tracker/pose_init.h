@@ -31,26 +31,14 @@ BodyDimensions dimensions_from_joints(const NamedJoints& joints, const std::stri
 StickPose pose_from_joints(const StickModel& model, const NamedJoints& joints,
                            const std::string& source);
 
-// How far the hull's centerline runs from the torso and head joint lines on a frame whose pose
-// is known: per stick, the median offset across its axis of the points nearest its middle
-// (zero for the limbs, whose centroids follow the bones, and where too few points fall).
+// How far the hull's centerline runs from the pelvis, chest and head joint lines on a frame
+// whose pose is known: per stick, the median offset across its axis of the points nearest its
+// middle (zero for the limbs, whose centroids follow the bones, and where too few points fall).
 std::array<Eigen::Vector3d, kSegmentCount> measure_centerline_offsets(
     const StickModel& model, const StickPose& pose, const std::vector<Eigen::Vector3d>& points);
 
-// Radii and torso width in typical proportion to the sticks' lengths (an adult's limbs and
-// trunk), the fallback where rays cannot measure them.
-void set_typical_radii(BodyDimensions& dims);
-
-// Radius of each stick's body part on a frame whose pose is known, from the silhouette rays
-// passing through its middle; for the torso its depth and half-width (an ellipse fitted to its
-// reach across the axis in six directions; round when they do not determine it). A part
-// that the rays cannot measure keeps its typical radius, and no measurement strays beyond
-// [0.6, 1.6] of it. Sets dims.radius and dims.torso_width.
-void measure_radii(BodyDimensions& dims, JointSet joints, const StickPose& pose,
-                   const std::vector<SilhouetteRay>& rays);
-
 // Dimensions for a person of `height_m`: simcap's humanoid (Drillis-Contini proportions)
-// scaled to that height, shoulders and hips included, and typical radii. (Table 5.3's d_s = 0.8
+// scaled to that height, shoulders and hips included. (Table 5.3's d_s = 0.8
 // and d_H = 0.7 describe HumanEva's joint centres: on H-Anim's they put the shoulders 8 cm low
 // and the hips 4 cm wide.)
 BodyDimensions dimensions_from_height(double height_m);

@@ -8,6 +8,8 @@
 #include <limits>
 #include <optional>
 
+#include "tracker/rim.h"
+
 namespace simcap::tracker {
 namespace {
 
@@ -40,7 +42,7 @@ std::optional<Eigen::Vector3d> nearest_occupied(const Occupancy& hull, const Eig
 // The Jacobian of a point carried by one segment: only the torso's six parameters and the
 // angles of the segment's chain (at most six) are non-zero, so it is kept in compact form.
 struct PointJacobian {
-  static constexpr int kMax = 12;
+  static constexpr int kMax = 15;
   std::array<int, kMax> index{};  // parameter of each column
   int n = 0;
   Eigen::Matrix<double, 3, kMax> J = Eigen::Matrix<double, 3, kMax>::Zero();
@@ -59,8 +61,8 @@ class Normal {
     for (int s = 0; s < kSegmentCount; ++s) chains_[s] = model.chain_angles(s);
   }
 
-  // d(point)/d(parameters) for a point carried by `segment`: torso translation, torso rotation
-  // as a left increment about t0, then the chain's angles.
+  // d(point)/d(parameters) for a point carried by `segment`: the root's translation, its
+  // rotation as a left increment about t0, then the chain's angles.
   PointJacobian jacobian(int segment, const Eigen::Vector3d& p) const {
     PointJacobian j;
     for (int i = 0; i < 6; ++i) j.index[i] = i;
@@ -105,6 +107,11 @@ class Normal {
   }
   // A one-sided residual that is satisfied: it counts, so that costs stay comparable.
   void add_zero(int n = 1) { count_ += n; }
+  // `n` residuals of constant size e (no gradient): they count, so that costs stay comparable.
+  void add_constant(int n, double e, double w2) {
+    cost_ += n * w2 * e * e;
+    count_ += n;
+  }
   double cost() const { return count_ ? cost_ / count_ : 0.0; }
 
  private:
@@ -124,70 +131,24 @@ class Normal {
 };
 
 // The rim residuals of one camera's view: points on each capsule's outline as that camera sees
-// it, pulled towards the nearest silhouette pixel when they project outside.
-void add_rim(const SilhouetteView& view, const StickGeometry& g, const BodyDimensions& dims,
-             const RefineOptions& options, double w2, Normal& normal) {
-  const Camera& cam = view.camera();
-  const Eigen::Vector3d centre = cam.centre();
-  for (int s = 0; s < kSegmentCount; ++s) {
-    if (dims.radius[s] <= 0) continue;
-    const Eigen::Vector3d ab = g.line_distal[s] - g.line_proximal[s];
-    const Eigen::Vector3d axis = ab.normalized();
-    const int n = std::max(2, static_cast<int>(ab.norm() / options.rim_step_m));
-    for (int i = 0; i < n; ++i) {
-      const Eigen::Vector3d x = g.line_proximal[s] + (i + 0.5) / n * ab;
-      // The outline of a cylinder seen from `centre` runs across both the axis and the view.
-      const Eigen::Vector3d across = axis.cross(x - centre).normalized();
-      double reach = dims.radius[s];
-      if (s == kTorso && dims.torso_width > 0) {
-        const Eigen::Vector3d a = g.rotation[kTorso].transpose() * across;
-        reach = std::hypot(dims.torso_width * a.x(), dims.radius[kTorso] * a.z());
-      }
-      for (const double side : {-1.0, 1.0}) {
-        const Eigen::Vector3d p = x + side * reach * across;
-        const Eigen::Vector3d pc = cam.to_camera(p);
-        const Eigen::Vector2d px = cam.project_camera(pc);
-        const int u = static_cast<int>(std::lround(px.x())),
-                  v = static_cast<int>(std::lround(px.y()));
-        if (pc.z() <= 0 || u < 0 || v < 0 || u >= cam.width || v >= cam.height ||
-            view.inside(u, v)) {
-          normal.add_zero();
-          continue;
-        }
-        // Pulled towards the nearest silhouette pixel, at the point's own depth.
-        const Eigen::Vector2i near = view.nearest(u, v);
-        const Eigen::Vector3d dir = cam.unproject_camera(near.cast<double>());
-        const Eigen::Vector3d target = cam.to_world(dir * (pc.z() / dir.z()));
-        normal.add(normal.jacobian(s, p), target - p, w2);
-      }
+// it, pulled towards the silhouette's edge when they project outside.
+void add_rim(const SilhouetteView& view, const PlacedSurface& surface, const RefineOptions& options,
+             double w2, Normal& normal) {
+  for_each_rim_point(view, surface, options.rim_step_m, [&](const RimPoint& rim) {
+    if (rim.outside) {
+      normal.add(normal.jacobian(surface[rim.capsule].segment, rim.point), rim.target - rim.point,
+                 w2);
+    } else {
+      normal.add_zero();
     }
-  }
+  });
 }
-
-// Bounding spheres of the capsules: a sphere bounds its capsule's signed distance from below,
-// so a part whose sphere is farther than the best distance found so far needs no exact test
-// (most points and rays lie deep inside one part).
-struct CapsuleBounds {
-  CapsuleBounds(const StickGeometry& g, const BodyDimensions& dims) {
-    for (int s = 0; s < kSegmentCount; ++s) {
-      centre[s] = 0.5 * (g.line_proximal[s] + g.line_distal[s]);
-      const double reach =
-          s == kTorso ? std::max(dims.radius[s], dims.torso_width) : dims.radius[s];
-      bound[s] = 0.5 * (g.line_distal[s] - g.line_proximal[s]).norm() + reach;
-    }
-  }
-  double below(int s, const Eigen::Vector3d& x) const { return (x - centre[s]).norm() - bound[s]; }
-  double below(int s, const SilhouetteRay& ray) const {
-    return (centre[s] - ray.origin).cross(ray.direction).norm() - bound[s];
-  }
-  std::array<Eigen::Vector3d, kSegmentCount> centre;
-  std::array<double, kSegmentCount> bound{};
-};
 
 }  // namespace
 
-PoseRefiner::PoseRefiner(const StickModel& model, const RefineOptions& options)
-    : model_(&model), options_(options) {}
+PoseRefiner::PoseRefiner(const StickModel& model, const BodySurface& surface,
+                         const RefineOptions& options)
+    : model_(&model), surface_(surface), options_(options) {}
 
 // Which stick each residual belongs to, decided once per iteration (as ICP fixes its closest
 // points before solving) so that a candidate step is judged on the same residuals.
@@ -203,6 +164,9 @@ struct PoseRefiner::Associations {
   // Rays passing deeper than RefineOptions::settled_depth_m inside a capsule: residual 0 here,
   // and counted as 0 for the steps this iteration tries.
   int settled_rays = 0;
+  // Rays that no capsule their colour allows comes within RefineOptions::ray_max_miss_m of:
+  // counted at that miss, so that a pose cannot lower its cost by leaving rays unexplained.
+  int lost_rays = 0;
 };
 
 PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
@@ -237,32 +201,31 @@ PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
       }
     }
   }
-  const BodyDimensions& dims = model_->dimensions();
-  const CapsuleBounds bounds(g, dims);
+  const PlacedSurface surface = place(surface_, g);
   // Silhouette rays: the capsule each passes nearest (most inside) among the parts its colour
-  // may show. No X84 here: most rays meet
-  // a capsule, so the misses' median and MAD are zero and it would reject every ray that still
-  // pulls a limb into place; only misses beyond any limb's reach are dropped.
+  // may show. No X84 here: most rays meet a capsule, so the misses' median and MAD are zero and
+  // it would reject every ray that still pulls a limb into place; misses beyond any limb's
+  // reach count at that reach.
   if (!targets.rays.empty() && options_.ray_weight > 0) {
     for (size_t i = 0; i < targets.rays.size(); ++i) {
       const SilhouetteRay& ray = targets.rays[i];
       double best = std::numeric_limits<double>::infinity(), d;
       int owner = -1;
-      Eigen::Vector3d dir, nearest;
-      for (int s = 0; s < kSegmentCount; ++s) {
-        if (dims.radius[s] <= 0 || !(ray.parts >> s & 1)) continue;
-        if (bounds.below(s, ray) >= best) continue;
-        const Eigen::Vector3d q = nearest_on_ray(ray, g.line_proximal[s], g.line_distal[s]);
-        if (capsule_distance(g, dims, s, q, &d, &dir) && d < best) best = d, owner = s, nearest = q;
+      Eigen::Vector3d dir;
+      for (int c = 0; c < kCapsuleCount; ++c) {
+        const PlacedCapsule& capsule = surface[c];
+        if (!(ray.parts >> capsule.segment & 1)) continue;
+        // A sphere bounds its capsule's distance from below: most rays pass deep inside one
+        // part, and the others need no exact test.
+        if ((capsule.centre - ray.origin).cross(ray.direction).norm() - capsule.bound >= best) {
+          continue;
+        }
+        const Eigen::Vector3d q = nearest_on_ray(ray, capsule.a, capsule.a + capsule.ab);
+        if (capsule.distance(q, &d, &dir) && d < best) best = d, owner = c;
       }
-      if (owner < 0 || best > options_.ray_max_miss_m) continue;
-      if (owner == kLCalf || owner == kRCalf) {
-        // The model has no feet: rays past the ankle would drag the calf towards the toes.
-        const Eigen::Vector3d ab = g.line_distal[owner] - g.line_proximal[owner];
-        const double along = (nearest - g.line_proximal[owner]).dot(ab);
-        if (along > options_.foot_start * ab.squaredNorm()) continue;
-      }
-      if (best < -options_.settled_depth_m) {
+      if (owner < 0 || best > options_.ray_max_miss_m) {
+        ++a.lost_rays;
+      } else if (best < -options_.settled_depth_m) {
         ++a.settled_rays;
       } else {
         a.rays.emplace_back(static_cast<int>(i), owner);
@@ -301,23 +264,25 @@ double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
         g.proximal[c.segment] + c.along * (g.distal[c.segment] - g.proximal[c.segment]);
     normal.add(normal.jacobian(c.segment, x), c.target - x, wc2);
   }
-  const BodyDimensions& dims = model_->dimensions();
+  const PlacedSurface surface = place(surface_, g);
   const double wr2 = options_.ray_weight * options_.ray_weight;
   normal.add_zero(a.settled_rays);
-  for (const auto& [i, s] : a.rays) {
-    const Eigen::Vector3d q = nearest_on_ray(targets.rays[i], g.line_proximal[s], g.line_distal[s]);
+  normal.add_constant(a.lost_rays, options_.ray_max_miss_m, wr2);
+  for (const auto& [i, c] : a.rays) {
+    const PlacedCapsule& capsule = surface[c];
+    const Eigen::Vector3d q = nearest_on_ray(targets.rays[i], capsule.a, capsule.a + capsule.ab);
     double e;
     Eigen::Vector3d dir;
-    if (!capsule_distance(g, dims, s, q, &e, &dir) || e <= 0) {
+    if (!capsule.distance(q, &e, &dir) || e <= 0) {
       normal.add_zero();
       continue;
     }
-    normal.add_scalar(normal.jacobian(s, q - e * dir), -dir, e, wr2);
+    normal.add_scalar(normal.jacobian(capsule.segment, q - e * dir), -dir, e, wr2);
   }
   if (targets.views && options_.rim_weight > 0) {
     const double w2 = options_.rim_weight * options_.rim_weight;
     for (const SilhouetteView& view : *targets.views) {
-      if (!view.empty()) add_rim(view, g, dims, options_, w2, normal);
+      if (!view.empty()) add_rim(view, surface, options_, w2, normal);
     }
   }
   auto prior = [&](std::initializer_list<int> angles, double slope) {

@@ -2,6 +2,7 @@
 // once, run after Moschini's per-segment ICP; also scores poses for hypothesis tests.
 #pragma once
 
+#include "tracker/body_surface.h"
 #include "tracker/icp_targets.h"
 #include "tracker/stick_model.h"
 
@@ -22,7 +23,9 @@ struct RefineOptions {
   int containment_search = 6;       // voxels searched around a sample for the nearest occupied
   // Per silhouette ray, on its distance outside the nearest capsule (0 when a capsule meets it).
   double ray_weight = 1.0;
-  double ray_max_miss_m = 0.6;  // rays passing farther from every capsule are left out
+  // Rays passing farther from every capsule count at this miss, without pulling: a ray this far
+  // from the body's parts cannot tell where they should go.
+  double ray_max_miss_m = 0.6;
   // Rays passing this deep inside a capsule count as met for the whole iteration, trial steps
   // included, without being recomputed (exact at the pose they were associated at; a step that
   // moves a surface this far is rare, and the next iteration looks again).
@@ -31,13 +34,12 @@ struct RefineOptions {
   // its distance outside that camera's silhouette (0 inside).
   double rim_weight = 1.0;
   double rim_step_m = 0.04;
-  double foot_start = 0.9;  // rays nearest a calf beyond this fraction of it meet a foot
   // A weak prior towards the neutral pose on hip abduction and twist, as a residual of this
   // many metres per radian: people walk and stand with their legs swinging fore and aft. A
   // torso turned away from the true heading must spread the legs sideways to reach their data,
   // so the prior turns the torso back (its heading is otherwise barely observed: 4 corner views
   // give a near-round hull around a torso, and the arms often merge with it).
-  double leg_prior_m_per_rad = 0.3;
+  double leg_prior_m_per_rad = 0.1;
   // A pull of every parameter towards the prediction (IcpTargets::prediction, else where the
   // refinement started), as this many metres per radian (and per metre for the torso's
   // translation): directions the data barely observe then stay put instead of drifting, and a
@@ -47,7 +49,8 @@ struct RefineOptions {
 
 class PoseRefiner {
  public:
-  PoseRefiner(const StickModel& model, const RefineOptions& options = {});
+  PoseRefiner(const StickModel& model, const BodySurface& surface,
+              const RefineOptions& options = {});
   // Gauss-Newton steps on the torso's translation and rotation and all joint angles; the angles
   // stay in their ranges.
   void refine(const IcpTargets& targets, StickPose& pose) const;
@@ -63,6 +66,7 @@ class PoseRefiner {
   double evaluate(const IcpTargets& targets, const Associations& a, const StickPose& pose,
                   const StickPose* start, Eigen::MatrixXd* H, Eigen::VectorXd* g) const;
   const StickModel* model_;
+  BodySurface surface_;
   RefineOptions options_;
 };
 

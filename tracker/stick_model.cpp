@@ -1,5 +1,6 @@
 #include "tracker/stick_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -18,8 +19,9 @@ double wrap(double a) {  // to (-π, π]
   return a <= -kPi ? a + 2 * kPi : a;
 }
 
-// The joint that places each segment relative to its parent (torso: none): its H-Anim name in
-// models/joint_limits.h and which angles its DOFs are, outermost first.
+// The joint that places each segment relative to its parent (pelvis: none): its H-Anim name in
+// models/joint_limits.h ("spine" lumps the thoracolumbar joints) and which angles its DOFs are,
+// outermost first.
 struct JointSpec {
   const char* name;
   int count;
@@ -30,20 +32,30 @@ using JointTable = std::array<JointSpec, kSegmentCount>;
 const JointTable& joint_specs(JointSet set) {
   static constexpr JointTable moschini = {{
       {"", 0, {}},
+      {"spine", 0, {}},
       {"vc7", 2, {kNeck1, kNeck2}},
       {"l_shoulder", 3, {kLShoulder1, kLShoulder2, kLShoulder3}},
       {"l_elbow", 1, {kLElbow}},
+      {"l_radiocarpal", 0, {}},
       {"r_shoulder", 3, {kRShoulder1, kRShoulder2, kRShoulder3}},
       {"r_elbow", 1, {kRElbow}},
+      {"r_radiocarpal", 0, {}},
       {"l_hip", 2, {kLHip1, kLHip2}},
       {"l_knee", 1, {kLKnee}},
+      {"l_talocrural", 0, {}},
       {"r_hip", 2, {kRHip1, kRHip2}},
       {"r_knee", 1, {kRKnee}},
+      {"r_talocrural", 0, {}},
   }};
   static constexpr JointTable urdf = [] {
     JointTable t = moschini;
+    t[kChest] = {"spine", 3, {kSpineLateral, kSpineFlexion, kSpineTwist}};
     t[kLThigh] = {"l_hip", 3, {kLHip1, kLHip2, kLHipTwist}};
     t[kRThigh] = {"r_hip", 3, {kRHip1, kRHip2, kRHipTwist}};
+    t[kLFoot] = {"l_talocrural", 1, {kLAnkle}};
+    t[kRFoot] = {"r_talocrural", 1, {kRAnkle}};
+    t[kLHand] = {"l_radiocarpal", 2, {kLWristFlexion, kLWristDeviation}};
+    t[kRHand] = {"r_radiocarpal", 2, {kRWristFlexion, kRWristDeviation}};
     return t;
   }();
   return set == JointSet::moschini ? moschini : urdf;
@@ -55,6 +67,29 @@ struct AngleTable {
   std::array<AngleRange, kMaxAngles> range{};
 };
 
+// The thoracolumbar joints as one: per axis, the sum of their ranges.
+JointLimits lumped_spine(const std::vector<JointLimits>& source) {
+  JointLimits spine{"spine", {}};
+  for (const char* name : {"vl5", "vl3", "vl1", "vt10", "vt6", "vt1"}) {
+    const JointLimits* joint = find_joint_limits(source, name);
+    if (!joint) {
+      throw Error(std::string("stick model: models/joint_limits.h has no entry for '") + name +
+                  "'");
+    }
+    for (const DofLimit& dof : joint->dofs) {
+      auto it = std::find_if(spine.dofs.begin(), spine.dofs.end(),
+                             [&](const DofLimit& d) { return d.axis == dof.axis; });
+      if (it == spine.dofs.end()) {
+        spine.dofs.push_back({"spine", dof.axis, 0.0, 0.0, "sum of vl5..vt1"});
+        it = spine.dofs.end() - 1;
+      }
+      it->lower += dof.lower;
+      it->upper += dof.upper;
+    }
+  }
+  return spine;
+}
+
 AngleTable make_angle_table(JointSet set) {
   const std::vector<JointLimits>& source =
       set == JointSet::moschini ? simcap::moschini_joint_limits() : humanoid_joint_limits();
@@ -64,20 +99,24 @@ AngleTable make_angle_table(JointSet set) {
   const JointTable& specs = joint_specs(set);
   for (int s = 1; s < kSegmentCount; ++s) {
     const JointSpec& spec = specs[s];
-    const JointLimits* limits = find_joint_limits(source, spec.name);
-    if (!limits || static_cast<int>(limits->dofs.size()) < spec.count) {
-      throw Error(std::string("stick model: models/joint_limits.h has no ") +
-                  std::to_string(spec.count) + "-DOF entry for '" + spec.name + "'");
-    }
+    if (spec.count == 0) continue;
+    const JointLimits spine =
+        spec.name == std::string_view("spine") ? lumped_spine(source) : JointLimits{};
+    const JointLimits* limits = spine.dofs.empty() ? find_joint_limits(source, spec.name) : &spine;
     for (int i = 0; i < spec.count; ++i) {
-      const DofLimit& dof = limits->dofs[i];
       const int axis = order[spec.count][i];
-      if (dof.axis != Eigen::Vector3d::Unit(axis)) {
-        throw Error("stick model: unexpected axis for DOF '" + dof.name + "'");
+      const auto dof = limits ? std::find_if(limits->dofs.begin(), limits->dofs.end(),
+                                             [&](const DofLimit& d) {
+                                               return d.axis == Eigen::Vector3d::Unit(axis);
+                                             })
+                              : std::vector<DofLimit>::const_iterator{};
+      if (!limits || dof == limits->dofs.end()) {
+        throw Error(std::string("stick model: models/joint_limits.h has no ") + "XYZ"[axis] +
+                    " DOF for '" + spec.name + "'");
       }
       const int k = spec.angles[i];
       t.axis[k] = axis;
-      t.range[k] = {dof.lower, dof.upper, dof.upper - dof.lower >= 2 * kPi - 1e-9};
+      t.range[k] = {dof->lower, dof->upper, dof->upper - dof->lower >= 2 * kPi - 1e-9};
     }
   }
   return t;
@@ -117,7 +156,9 @@ std::string_view angle_name(int angle) {
       "l_shoulder_flexion", "r_shoulder_flexion", "l_shoulder_twist",     "r_shoulder_twist",
       "l_elbow_flexion",    "r_elbow_flexion",    "l_hip_abduction",      "r_hip_abduction",
       "l_hip_flexion",      "r_hip_flexion",      "l_knee_flexion",       "r_knee_flexion",
-      "l_hip_twist",        "r_hip_twist"};
+      "l_hip_twist",        "r_hip_twist",        "spine_lateral",        "spine_flexion",
+      "spine_twist",        "l_ankle_flexion",    "r_ankle_flexion",      "l_wrist_flexion",
+      "r_wrist_flexion",    "l_wrist_deviation",  "r_wrist_deviation"};
   return names.at(angle);
 }
 
@@ -133,14 +174,15 @@ double limit_angle(double angle, const AngleRange& range) {
 
 int segment_parent(int segment) {
   static constexpr std::array<int, kSegmentCount> parents = {
-      -1, kTorso, kTorso, kLUpperArm, kTorso, kRUpperArm, kTorso, kLThigh, kTorso, kRThigh};
+      -1,        kPelvis, kChest,  kChest, kLUpperArm, kLForearm, kChest, kRUpperArm,
+      kRForearm, kPelvis, kLThigh, kLCalf, kPelvis,    kRThigh,   kRCalf};
   return parents.at(segment);
 }
 
 std::string_view segment_name(int segment) {
   static constexpr std::array<std::string_view, kSegmentCount> names = {
-      "torso",     "head",    "l_upperarm", "l_forearm", "r_upperarm",
-      "r_forearm", "l_thigh", "l_calf",     "r_thigh",   "r_calf"};
+      "pelvis", "chest",   "head",   "l_upperarm", "l_forearm", "l_hand", "r_upperarm", "r_forearm",
+      "r_hand", "l_thigh", "l_calf", "l_foot",     "r_thigh",   "r_calf", "r_foot"};
   return names.at(segment);
 }
 
@@ -157,18 +199,18 @@ void BodyDimensions::validate() const {
                                                     {"head", head},
                                                     {"upper_arm", upper_arm},
                                                     {"forearm", forearm},
+                                                    {"hand", hand},
                                                     {"thigh", thigh},
-                                                    {"calf", calf}};
+                                                    {"calf", calf},
+                                                    {"foot", foot}};
   for (const auto& [name, value] : lengths) {
     if (!(value > 0.01 && value < 2.0)) {
       throw Error(std::string("body dimension '") + name +
                   "' must be a length in (0.01, 2) m, got " + std::to_string(value));
     }
   }
-  const std::pair<const char*, double> fractions[] = {{"d_s", d_s},
-                                                      {"d_h", d_h},
-                                                      {"skullbase_fraction", skullbase_fraction},
-                                                      {"wrist_fraction", wrist_fraction}};
+  const std::pair<const char*, double> fractions[] = {
+      {"d_s", d_s}, {"d_h", d_h}, {"skullbase_fraction", skullbase_fraction}};
   for (const auto& [name, value] : fractions) {
     if (!(value >= 0.0 && value <= 1.5)) {
       throw Error(std::string("body dimension '") + name +
@@ -176,13 +218,19 @@ void BodyDimensions::validate() const {
     }
   }
   const std::pair<const char*, double> offsets[] = {{"root_above_hips", root_above_hips},
+                                                    {"root_forward", root_forward},
                                                     {"shoulder_forward", shoulder_forward},
-                                                    {"hip_forward", hip_forward}};
+                                                    {"hip_forward", hip_forward},
+                                                    {"spine_pivot", spine_pivot}};
   for (const auto& [name, value] : offsets) {
     if (!(std::abs(value) < torso_half)) {
       throw Error(std::string("body dimension '") + name + "' must lie within the torso, got " +
                   std::to_string(value));
     }
+  }
+  if (!(std::abs(foot_pitch) < kPi / 2)) {
+    throw Error("body dimension 'foot_pitch' must lie within (-pi/2, pi/2), got " +
+                std::to_string(foot_pitch));
   }
   for (int s = 0; s < kSegmentCount; ++s) {
     if (!(centerline_offset[s].norm() < 0.25)) {
@@ -206,11 +254,20 @@ const std::array<AngleRange, kMaxAngles>& StickModel::ranges() const {
 
 std::vector<int> StickModel::chain_angles(int segment) const {
   std::vector<int> out;
-  for (int s = segment; s > kTorso; s = segment_parent(s)) {
+  for (int s = segment; s > kPelvis; s = segment_parent(s)) {
     const JointSpec& spec = joint_specs(joints_)[s];
     out.insert(out.end(), spec.angles.begin(), spec.angles.begin() + spec.count);
   }
   return out;
+}
+
+int StickModel::joint_dofs(int segment) const {
+  return joint_specs(joints_).at(segment).count;
+}
+
+int StickModel::moving_segment(int segment) const {
+  while (segment > kPelvis && joint_dofs(segment) == 0) segment = segment_parent(segment);
+  return segment;
 }
 
 int StickModel::twist_angle(int segment) const {
@@ -219,14 +276,25 @@ int StickModel::twist_angle(int segment) const {
 }
 
 Eigen::Vector3d StickModel::direction(int segment) const {
-  return segment == kTorso || segment == kHead ? Eigen::Vector3d::UnitY()
-                                               : Eigen::Vector3d(-Eigen::Vector3d::UnitY());
+  switch (segment) {
+    case kPelvis:
+    case kChest:
+    case kHead:
+      return Eigen::Vector3d::UnitY();
+    case kLFoot:
+    case kRFoot:
+      return {0, -std::sin(dims_.foot_pitch), std::cos(dims_.foot_pitch)};
+    default:
+      return -Eigen::Vector3d::UnitY();
+  }
 }
 
 double StickModel::length(int segment) const {
   switch (segment) {
-    case kTorso:
-      return 2 * dims_.torso_half;
+    case kPelvis:
+      return dims_.torso_half + dims_.spine_pivot;
+    case kChest:
+      return dims_.torso_half - dims_.spine_pivot;
     case kHead:
       return dims_.head;
     case kLUpperArm:
@@ -235,30 +303,38 @@ double StickModel::length(int segment) const {
     case kLForearm:
     case kRForearm:
       return dims_.forearm;
+    case kLHand:
+    case kRHand:
+      return dims_.hand;
     case kLThigh:
     case kRThigh:
       return dims_.thigh;
-    default:
+    case kLCalf:
+    case kRCalf:
       return dims_.calf;
+    default:
+      return dims_.foot;
   }
 }
 
 Eigen::Vector3d StickModel::attachment(int segment) const {
-  const double h = dims_.torso_half, w = dims_.shoulder_half;
+  const double h = dims_.torso_half, w = dims_.shoulder_half, pivot = dims_.spine_pivot;
   switch (segment) {
+    case kPelvis:
+      return Eigen::Vector3d::Zero();
+    case kChest:
+      return {0, pivot, 0};
     case kHead:
-      return {0, h, 0};
+      return {0, h - pivot, 0};
     case kLUpperArm:
-      return {w, dims_.d_s * h, dims_.shoulder_forward};
+      return {w, dims_.d_s * h - pivot, dims_.shoulder_forward};
     case kRUpperArm:
-      return {-w, dims_.d_s * h, dims_.shoulder_forward};
+      return {-w, dims_.d_s * h - pivot, dims_.shoulder_forward};
     case kLThigh:
       return {dims_.d_h * w, -h, dims_.hip_forward};
     case kRThigh:
       return {-dims_.d_h * w, -h, dims_.hip_forward};
-    case kTorso:
-      return Eigen::Vector3d::Zero();
-    default: {  // forearm and calf hang from the parent's distal end
+    default: {  // forearms, hands, calves and feet hang from the parent's distal end
       const int parent = segment_parent(segment);
       return direction(parent) * length(parent);
     }
@@ -267,15 +343,12 @@ Eigen::Vector3d StickModel::attachment(int segment) const {
 
 StickGeometry StickModel::geometry(const StickPose& pose) const {
   StickGeometry g;
-  const Eigen::Vector3d up = pose.R0.col(1) * dims_.torso_half;
-  g.rotation[kTorso] = pose.R0;
-  g.proximal[kTorso] = pose.t0 - up;
-  g.distal[kTorso] = pose.t0 + up;
-  g.line_proximal[kTorso] = g.proximal[kTorso] + pose.R0 * dims_.centerline_offset[kTorso];
-  g.line_distal[kTorso] = g.distal[kTorso] + pose.R0 * dims_.centerline_offset[kTorso];
+  g.rotation[kPelvis] = pose.R0;
+  g.proximal[kPelvis] = pose.t0 - pose.R0.col(1) * dims_.torso_half;
+  g.distal[kPelvis] = pose.t0 + pose.R0.col(1) * dims_.spine_pivot;
   for (int s = 1; s < kSegmentCount; ++s) {
     const int p = segment_parent(s);
-    const Eigen::Vector3d origin = p == kTorso ? pose.t0 : g.proximal[p];
+    const Eigen::Vector3d origin = p == kPelvis ? pose.t0 : g.proximal[p];
     const Eigen::Vector3d joint = origin + g.rotation[p] * attachment(s);
     Eigen::Matrix3d R = g.rotation[p];
     const JointSpec& spec = joint_specs(joints_)[s];
@@ -289,17 +362,20 @@ StickGeometry StickModel::geometry(const StickPose& pose) const {
     g.rotation[s] = R;
     g.proximal[s] = joint;
     g.distal[s] = joint + R * direction(s) * length(s);
-    g.line_proximal[s] = g.proximal[s] + R * dims_.centerline_offset[s];
-    g.line_distal[s] = g.distal[s] + R * dims_.centerline_offset[s];
+  }
+  for (int s = 0; s < kSegmentCount; ++s) {
+    const Eigen::Vector3d offset = g.rotation[s] * dims_.centerline_offset[s];
+    g.line_proximal[s] = g.proximal[s] + offset;
+    g.line_distal[s] = g.distal[s] + offset;
   }
   return g;
 }
 
 std::array<Eigen::Vector3d, kReferencePointCount> StickModel::reference_points(
     const StickGeometry& g) const {
-  return {0.5 * (g.proximal[kTorso] + g.distal[kTorso]),
+  return {g.proximal[kPelvis] + g.rotation[kPelvis].col(1) * dims_.torso_half,
           g.distal[kHead],
-          g.distal[kTorso],
+          g.distal[kChest],
           g.proximal[kLUpperArm],
           g.proximal[kRUpperArm],
           g.proximal[kLThigh],
@@ -308,8 +384,8 @@ std::array<Eigen::Vector3d, kReferencePointCount> StickModel::reference_points(
           g.distal[kRUpperArm],
           g.distal[kLThigh],
           g.distal[kRThigh],
-          g.distal[kLForearm],
-          g.distal[kRForearm],
+          g.distal[kLHand],
+          g.distal[kRHand],
           g.distal[kLCalf],
           g.distal[kRCalf]};
 }
@@ -318,12 +394,12 @@ Eigen::Matrix<double, 3 * kReferencePointCount, Eigen::Dynamic> StickModel::angl
     const StickGeometry& g, const std::array<Eigen::Vector3d, kReferencePointCount>& p) const {
   // The segment whose motion carries each reference point (its own angles and its ancestors').
   static constexpr std::array<int, kReferencePointCount> carrier = {
-      kTorso,     kHead,   kTorso,  kTorso,    kTorso,    kTorso, kTorso, kLUpperArm,
-      kRUpperArm, kLThigh, kRThigh, kLForearm, kRForearm, kLCalf, kRCalf};
+      kPelvis,    kHead,   kChest,  kChest, kChest, kPelvis, kPelvis, kLUpperArm,
+      kRUpperArm, kLThigh, kRThigh, kLHand, kRHand, kLCalf,  kRCalf};
   Eigen::Matrix<double, 3 * kReferencePointCount, Eigen::Dynamic> J =
       Eigen::MatrixXd::Zero(3 * kReferencePointCount, angle_count());
   for (int i = 0; i < kReferencePointCount; ++i) {
-    for (int s = carrier[i]; s > kTorso; s = segment_parent(s)) {
+    for (int s = carrier[i]; s > kPelvis; s = segment_parent(s)) {
       const JointSpec& spec = joint_specs(joints_)[s];
       for (int d = 0; d < spec.count; ++d) {
         const int k = spec.angles[d];
@@ -337,14 +413,14 @@ Eigen::Matrix<double, 3 * kReferencePointCount, Eigen::Dynamic> StickModel::angl
 std::vector<Eigen::Vector3d> StickModel::he15(const StickPose& pose) const {
   const StickGeometry g = geometry(pose);
   const auto p = reference_points(g);
-  const Eigen::Vector3d hip_line = g.proximal[kTorso];
-  const Eigen::Vector3d root = hip_line + pose.R0.col(1) * dims_.root_above_hips;
+  const Eigen::Vector3d root =
+      g.proximal[kPelvis] + pose.R0 * Eigen::Vector3d(0, dims_.root_above_hips, dims_.root_forward);
   auto along = [](const Eigen::Vector3d& a, const Eigen::Vector3d& b, double f) {
     return Eigen::Vector3d(a + f * (b - a));
   };
   const Eigen::Vector3d skullbase = along(p[kNeckPoint], p[kHeadTip], dims_.skullbase_fraction);
-  const Eigen::Vector3d l_wrist = along(p[kLElbowPoint], p[kLHandTip], dims_.wrist_fraction);
-  const Eigen::Vector3d r_wrist = along(p[kRElbowPoint], p[kRHandTip], dims_.wrist_fraction);
+  const Eigen::Vector3d& l_wrist = g.distal[kLForearm];
+  const Eigen::Vector3d& r_wrist = g.distal[kRForearm];
   std::vector<Eigen::Vector3d> out;
   for (const std::string& name : he15_joints()) {
     if (name == "humanoid_root")
@@ -374,9 +450,9 @@ std::vector<Eigen::Vector3d> StickModel::he15(const StickPose& pose) const {
     else if (name == "r_knee")
       out.push_back(p[kRKneePoint]);
     else if (name == "l_talocrural")
-      out.push_back(p[kLFoot]);
+      out.push_back(p[kLAnklePoint]);
     else if (name == "r_talocrural")
-      out.push_back(p[kRFoot]);
+      out.push_back(p[kRAnklePoint]);
     else
       throw Error("stick model: no mapping for HE15 joint '" + name + "'");
   }
@@ -385,19 +461,21 @@ std::vector<Eigen::Vector3d> StickModel::he15(const StickPose& pose) const {
 
 void StickModel::set_segment_rotation(StickPose& pose, int segment,
                                       const Eigen::Matrix3d& world_rotation) const {
-  if (segment <= kTorso || segment >= kSegmentCount) {
-    throw Error("set_segment_rotation: segment must be a limb or the head");
+  if (segment <= kPelvis || segment >= kSegmentCount) {
+    throw Error("set_segment_rotation: segment must be a limb, the chest or the head");
   }
+  const JointSpec& joint = joint_specs(joints_)[segment];
+  if (joint.count == 0) return;
   const StickGeometry g = geometry(pose);
   const Eigen::Matrix3d rel = g.rotation[segment_parent(segment)].transpose() * world_rotation;
-  const JointSpec& joint = joint_specs(joints_)[segment];
   const int k0 = joint.angles[0], k1 = joint.angles[1], k2 = joint.angles[2];
   // The stick's direction first (two swing solutions, Rz(a) Rx(b) (s·Y) = d), then a twist
   // about it from what remains; clamping the twist never changes where the stick points.
   std::array<Angles, 2> cand = {pose.theta, pose.theta};
   int count = 1;
+  const Eigen::Vector3d dir = direction(segment);
   if (joint.count >= 2) {
-    const double s = segment == kHead ? 1.0 : -1.0;
+    const double s = dir.y() > 0 ? 1.0 : -1.0;  // swinging joints carry sticks along ±Y
     const Eigen::Vector3d d = rel.col(1) * s;
     const double b = std::asin(std::clamp(s * d.z(), -1.0, 1.0));
     const double a =
@@ -405,9 +483,11 @@ void StickModel::set_segment_rotation(StickPose& pose, int segment,
     cand[0][k0] = a, cand[0][k1] = b;
     cand[1][k0] = wrap(a + kPi), cand[1][k1] = wrap(kPi - b);
     count = 2;
-  } else {  // elbows and knees: Rx(φ) (-Y) = d
-    const Eigen::Vector3d d = -rel.col(1);
-    if (std::hypot(d.y(), d.z()) > 1e-9) cand[0][k0] = std::atan2(-d.z(), -d.y());
+  } else {  // hinges about X: Rx(φ) turns the stick's angle in the Y-Z plane by φ
+    const Eigen::Vector3d d = rel * dir;
+    if (std::hypot(d.y(), d.z()) > 1e-9) {
+      cand[0][k0] = wrap(std::atan2(d.z(), d.y()) - std::atan2(dir.z(), dir.y()));
+    }
   }
   if (joint.count == 3) {  // Ry(c) = (Rz(a) Rx(b))^T rel, for each swing
     for (int i = 0; i < count; ++i) {

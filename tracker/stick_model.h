@@ -1,5 +1,6 @@
-// Moschini's stick-figure body (§4.1, §5.1.2): ten rigid sticks on a torso root with 16 joint
+// Moschini's stick-figure body (§4.1, §5.1.2): rigid sticks on a pelvis root with his 16 joint
 // angles (Table 5.1), its 15 reference points (Table 5.2) and the HE15 joints read off them.
+// simcap's URDF joint set adds a spine joint between pelvis and chest, wrists and ankles.
 #pragma once
 
 #include <Eigen/Core>
@@ -12,11 +13,11 @@
 namespace simcap::tracker {
 
 // Joint angles, stored 0-based: Moschini's θ1..θ16 (Table 5.1) and, for the URDF joint set,
-// the two hip twists after them. They are the degrees of freedom of models/joint_limits.h:
-// angles about the axes of the parent segment's frame, which is world-aligned in simcap's
-// neutral pose (upright, arms hanging, X left, Y up, Z forward), R = Rz(a) Rx(b) Ry(c) for the
-// DOFs a joint has. Signs are right-handed on both sides, so an abduction or twist has opposite
-// signs left and right.
+// the hip twists, the spine, the ankles and the wrists after them. They are the degrees of
+// freedom of models/joint_limits.h: angles about the axes of the parent segment's frame, which
+// is world-aligned in simcap's neutral pose (upright, arms hanging, X left, Y up, Z forward),
+// R = Rz(a) Rx(b) Ry(c) for the DOFs a joint has. Signs are right-handed on both sides, so an
+// abduction or twist has opposite signs left and right.
 enum JointAngle : int {
   kNeck1,       // θ1  vc7 lateral bend (Z)
   kNeck2,       // θ2  vc7 flexion (X, positive = chin forward)
@@ -36,6 +37,15 @@ enum JointAngle : int {
   kRKnee,       // θ16
   kLHipTwist,   // URDF set only: twist about the thigh (Y)
   kRHipTwist,
+  kSpineLateral,  // URDF set only: the thoracolumbar spine as one joint, lateral bend (Z)
+  kSpineFlexion,  //   flexion (X, positive = chest forward)
+  kSpineTwist,    //   twist (Y)
+  kLAnkle,        // URDF set only: ankle flexion (X, positive = toes down)
+  kRAnkle,
+  kLWristFlexion,  // URDF set only: wrist flexion (Z, towards the palm: negative on the left)
+  kRWristFlexion,
+  kLWristDeviation,  //   radial / ulnar deviation (X, towards the thumb: negative)
+  kRWristDeviation,
   kMaxAngles
 };
 inline constexpr int kMoschiniAngles = 16;
@@ -43,12 +53,15 @@ using Angles = std::array<double, kMaxAngles>;
 
 // Which degrees of freedom the sticks' joints have.
 enum class JointSet {
-  // Moschini's 16 angles with Table 5.1's ranges (the EKF state has his 23 parameters). His
-  // hips cannot turn about the thigh, so the knee's hinge axis cannot follow a toe-out.
+  // Moschini's 16 angles with Table 5.1's ranges (the EKF state has his 23 parameters): pelvis
+  // and chest are one rigid torso and the feet are fixed to the calves. His hips cannot turn
+  // about the thigh, so the knee's hinge axis cannot follow a toe-out.
   moschini,
-  // The URDF's DOFs and ranges (models/joint_limits.h humanoid_joint_limits()) for the same
-  // joints: the hips gain their twist (25 EKF parameters). The neck keeps two DOFs: a single
-  // head stick cannot show its own twist.
+  // The URDF's DOFs and ranges (models/joint_limits.h humanoid_joint_limits()): the hips gain
+  // their twist, the chest turns on the pelvis about one spine joint (the thoracolumbar joints
+  // lumped, their ranges summed), the feet flex at the ankles and the hands swing at the wrists
+  // (34 EKF parameters). The neck keeps two DOFs and the wrists lose their twist: a single
+  // stick cannot show its own.
   urdf,
 };
 // "moschini" or "urdf"; throws Error listing the choices otherwise.
@@ -64,21 +77,32 @@ std::string_view angle_name(int angle);
 // The angle moved into its range: wrapped for full turns, else the nearer bound (on the circle).
 double limit_angle(double angle, const AngleRange& range);
 
-// The ten sticks in pre-order (every parent before its children).
+// The sticks in pre-order (every parent before its children). Moschini's torso is the pelvis
+// and the chest: the pelvis runs from the hip line up to the spine joint, the chest on to vc7.
+// His forearm sticks reach the finger tips: here a forearm and a hand.
 enum Segment : int {
-  kTorso,
+  kPelvis,
+  kChest,
   kHead,
   kLUpperArm,
   kLForearm,
+  kLHand,
   kRUpperArm,
   kRForearm,
+  kRHand,
   kLThigh,
   kLCalf,
+  kLFoot,
   kRThigh,
   kRCalf,
+  kRFoot,
   kSegmentCount
 };
-int segment_parent(int segment);  // -1 for the torso
+int segment_parent(int segment);  // -1 for the pelvis
+// The pelvis and the chest: the trunk.
+inline bool is_trunk(int segment) {
+  return segment == kPelvis || segment == kChest;
+}
 std::string_view segment_name(int segment);
 // True when `segment` lies strictly below `ancestor` in the tree.
 bool is_strict_descendant(int segment, int ancestor);
@@ -98,8 +122,8 @@ enum ReferencePoint : int {
   kRKneePoint,
   kLHandTip,
   kRHandTip,
-  kLFoot,
-  kRFoot,
+  kLAnklePoint,  // Moschini's "foot": the calf's end
+  kRAnklePoint,
   kReferencePointCount
 };
 
@@ -110,9 +134,11 @@ inline std::array<Eigen::Vector3d, kSegmentCount> no_offsets() {
 }
 
 // Stick lengths and the torso's shape (Table 5.3 with full lengths instead of its "2λ"). The
-// torso stick runs from the hip line (hip midpoint) to the neck (vc7) through its centroid.
+// torso runs from the hip line (hip midpoint) to the neck (vc7) through its centroid, where the
+// root's frame is; the spine joint lies on that axis.
 struct BodyDimensions {
   double torso_half = 0.26;     // λ0(2): centroid to neck, and centroid to the hip line
+  double spine_pivot = -0.08;   // height of the spine joint above the centroid (below: < 0)
   double shoulder_half = 0.18;  // λ0(1): torso axis to each shoulder centre
   double d_s = 0.8;             // shoulder height above the centroid, fraction of torso_half
   double d_h = 0.7;             // hip half-spacing, fraction of shoulder_half
@@ -122,23 +148,20 @@ struct BodyDimensions {
   double hip_forward = 0.0;
   double head = 0.31;       // neck (vc7) to head tip
   double upper_arm = 0.33;  // shoulder to elbow
-  double forearm = 0.45;    // elbow to hand tip (the hull's forearm includes the hand)
+  double forearm = 0.26;    // elbow to wrist (radiocarpal)
+  double hand = 0.19;       // wrist to hand tip
   double thigh = 0.43;      // hip to knee
   double calf = 0.43;       // knee to ankle
+  double foot = 0.14;       // ankle to the ball of the foot (metatarsophalangeal_2)
+  double foot_pitch = 0.5;  // how far the ball lies below the ankle's level, radians, ankle at 0
   // HE15 points that are not stick ends (see StickModel::he15).
   double root_above_hips = 0.06;     // humanoid_root above the hip line, along the torso axis
+  double root_forward = 0.0;         // ...and in front of it
   double skullbase_fraction = 0.47;  // skullbase along the head stick from the neck
-  double wrist_fraction = 0.57;      // radiocarpal along the forearm stick from the elbow
   // Where the hull's centerline runs relative to each stick's joint line, in the segment's
   // frame: the spine's joints lie near the back of the torso, so the centroids of torso slices
   // run in front of them. ICP matches points to the offset lines; joints stay on the joint line.
   std::array<Eigen::Vector3d, kSegmentCount> centerline_offset = no_offsets();
-  // Radius of each stick's body part around its centerline, for fitting the silhouettes (see
-  // IcpTargets::rays and views); 0 leaves a stick out of that fit. The torso's is its depth
-  // (front to back); `torso_width` is its lateral half-width: an elliptic torso shows which way
-  // it faces, a round one does not.
-  std::array<double, kSegmentCount> radius{};
-  double torso_width = 0.0;
 
   // Throws Error naming the first dimension that is not a positive length / valid fraction.
   void validate() const;
@@ -146,14 +169,14 @@ struct BodyDimensions {
 
 struct StickPose {
   Eigen::Vector3d t0 = Eigen::Vector3d::Zero();      // torso centroid, world
-  Eigen::Matrix3d R0 = Eigen::Matrix3d::Identity();  // torso frame -> world
+  Eigen::Matrix3d R0 = Eigen::Matrix3d::Identity();  // pelvis frame -> world
   Angles theta{};
 };
 
 // The world placement of every stick for one pose.
 struct StickGeometry {
   std::array<Eigen::Matrix3d, kSegmentCount> rotation;  // segment frame -> world
-  std::array<Eigen::Vector3d, kSegmentCount> proximal;  // joint end (hip line for the torso)
+  std::array<Eigen::Vector3d, kSegmentCount> proximal;  // joint end (hip line for the pelvis)
   std::array<Eigen::Vector3d, kSegmentCount> distal;
   // The lines ICP matches points to: the joint line shifted by the centerline offset.
   std::array<Eigen::Vector3d, kSegmentCount> line_proximal;
@@ -180,30 +203,37 @@ class StickModel {
       const StickGeometry& g, const std::array<Eigen::Vector3d, kReferencePointCount>& p) const;
 
   // HE15 joints in he15_joints() order. humanoid_root sits root_above_hips above the hip line
-  // on the torso axis (the torso centroid is not the pelvis); vc7 is the neck; skullbase and
-  // radiocarpal lie on the head and forearm sticks at their fractions; the talocrural joints are
-  // the calf ends (Moschini's "feet").
+  // and root_forward in front of it (the torso centroid is not the pelvis); vc7 is the neck;
+  // skullbase lies on the head stick at its fraction; radiocarpal is the forearm's end and
+  // talocrural the calf's (Moschini's "foot").
   std::vector<Eigen::Vector3d> he15(const StickPose& pose) const;
 
-  // Moves the angles of `segment` (not the torso) so that its world rotation comes as close to
+  // Moves the angles of `segment` (not the pelvis) so that its world rotation comes as close to
   // `world_rotation` as its joint allows, given its parent's current placement: three angles
-  // for a shoulder, the stick direction for the 2-angle neck and hips and the 1-angle elbows and
-  // knees. The result respects the joint limits.
+  // for a shoulder, the spine or a URDF hip, the stick direction for the 2-angle neck and hips
+  // and the 1-angle elbows, knees and ankles; nothing for a joint without DOFs. The result
+  // respects the joint limits.
   void set_segment_rotation(StickPose& pose, int segment,
                             const Eigen::Matrix3d& world_rotation) const;
 
-  // The angles that move `segment`: its joint's and its ancestors' (at most six).
+  // The angles that move `segment`: its joint's and its ancestors' (at most seven).
   std::vector<int> chain_angles(int segment) const;
+  // How many angles the joint of `segment` has (0 for the pelvis and for fixed joints).
+  int joint_dofs(int segment) const;
+  // The segment that moves `segment` rigidly: itself, or its nearest ancestor whose joint has
+  // angles (the pelvis for a chest without a spine joint).
+  int moving_segment(int segment) const;
 
   // The angle that twists `segment` about its own stick (the innermost Y rotation of a 3-DOF
   // joint), or -1 when its joint has none.
   int twist_angle(int segment) const;
 
-  // Unit direction of a stick in its own frame and its length.
+  // Unit direction of a stick in its own frame (+Y up the trunk and head, -Y down the limbs,
+  // forward and down along a foot) and its length.
   Eigen::Vector3d direction(int segment) const;
   double length(int segment) const;
   // Where a segment's proximal joint sits in its parent's frame, relative to the parent's
-  // origin (the torso centroid, or the parent's proximal joint for a limb).
+  // origin (the torso centroid for the pelvis, else the parent's proximal joint).
   Eigen::Vector3d attachment(int segment) const;
 
  private:

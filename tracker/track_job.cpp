@@ -16,6 +16,7 @@
 #include "tracker/dataset.h"
 #include "tracker/pose_init.h"
 #include "tracker/sik_track_job.h"
+#include "tracker/surface_fit.h"
 
 namespace simcap {
 namespace fs = std::filesystem;
@@ -80,8 +81,8 @@ TrackSummary run_moschini(const fs::path& dataset_path, const TrackOptions& opti
   topt.use_filter = options.filter == "ekf";
   std::optional<MoschiniTracker> tracker;
   if (options.init == "gt") {
-    // The first frame's joints give the sticks, the pose, and where the hull's centerline runs
-    // relative to the torso and head joint lines.
+    // The first frame's joints give the sticks and the pose; its silhouettes the capsules, and
+    // where the hull's centerline runs relative to the trunk's and head's joint lines.
     const JointTrack gt = ds.ground_truth("--init gt");
     const std::string source = ds.ground_truth_path().string();
     const NamedJoints joints = joints_at(gt, frames.front(), source);
@@ -90,9 +91,10 @@ TrackSummary run_moschini(const fs::path& dataset_path, const TrackOptions& opti
     const StickPose start = pose_from_joints(plain, joints, source);
     const Observation first = perception.observe(frames.front());
     dims.centerline_offset = measure_centerline_offsets(plain, start, first.points);
-    measure_radii(dims, topt.joints, start, first.rays);
-    if (popt.colours) perception.set_appearance({StickModel(dims, topt.joints), start, first.rays});
-    tracker.emplace(dims, topt);
+    const BodySurface surface =
+        fit_surface(plain, start, typical_surface(dims), first.rays, first.views);
+    if (popt.colours) perception.set_appearance({plain, surface, start, first.rays});
+    tracker.emplace(dims, surface, topt);
     tracker->start(start);
   } else {
     // Assumption: in the first frames the person stands upright on the floor; the hull's top is
@@ -107,16 +109,17 @@ TrackSummary run_moschini(const fs::path& dataset_path, const TrackOptions& opti
       throw Error(dataset_path.string() + ": --init auto found no body in the first frames' hulls");
     }
     std::nth_element(tops.begin(), tops.begin() + tops.size() / 2, tops.end());
-    // The hull radii need a pose: the first fit, then the tracker restarts with them.
-    BodyDimensions dims = dimensions_from_height(tops[tops.size() / 2]);
-    MoschiniTracker finder(dims, topt);
+    // The capsules need a pose: the first fit with typical ones, then the tracker restarts with
+    // the capsules fitted to it.
+    const BodyDimensions dims = dimensions_from_height(tops[tops.size() / 2]);
+    MoschiniTracker finder(dims, typical_surface(dims), topt);
     finder.start_upright(first.front());
     const StickPose start = finder.step(first.front()).pose;
-    measure_radii(dims, topt.joints, start, first.front().rays);
-    if (popt.colours) {
-      perception.set_appearance({StickModel(dims, topt.joints), start, first.front().rays});
-    }
-    tracker.emplace(dims, topt);
+    const BodySurface surface = fit_surface(finder.model(), start, typical_surface(dims),
+                                            first.front().rays, first.front().views);
+    if (popt.colours)
+      perception.set_appearance({finder.model(), surface, start, first.front().rays});
+    tracker.emplace(dims, surface, topt);
     tracker->start(start);
   }
 
@@ -128,6 +131,8 @@ TrackSummary run_moschini(const fs::path& dataset_path, const TrackOptions& opti
     int n;
     ~RestoreThreads() { cv::setNumThreads(n); }
   } restore{opencv_threads};
+  std::optional<JointTrack> truth;
+  if (options.oracle) truth = ds.ground_truth("--oracle");
   Progress progress("track", static_cast<long>(frames.size()), options.quiet);
   const auto t0 = std::chrono::steady_clock::now();
   size_t next = 0;
@@ -147,8 +152,13 @@ TrackSummary run_moschini(const fs::path& dataset_path, const TrackOptions& opti
                  }) &
              tbb::make_filter<std::shared_ptr<Observation>, void>(
                  tbb::filter_mode::serial_in_order, [&](const std::shared_ptr<Observation>& obs) {
+                   if (truth) {
+                     const std::string source = ds.ground_truth_path().string();
+                     tracker->start(pose_from_joints(
+                         tracker->model(), joints_at(*truth, obs->frame, source), source));
+                   }
                    const TrackStep step = tracker->step(*obs);
-                   sink(*obs, step, tracker->model());
+                   sink(*obs, step, *tracker);
                    progress.advance();
                  }));
   progress.finish();
@@ -185,12 +195,13 @@ TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
   CsvWriter reinit(diag / "reinitializations.csv", {"frame", "reason"});
   std::optional<CsvWriter> iou;
   std::optional<BodyDimensions> dims;
+  std::optional<BodySurface> surface;
   char buf[256];
   const TrackSummary run = run_moschini(
       dataset, options, -1,
-      [&](const Observation& obs, const TrackStep& step, const StickModel& model) {
-        if (!dims) dims = model.dimensions();
-        track.add_frame(obs.frame, model.he15(step.pose));
+      [&](const Observation& obs, const TrackStep& step, const MoschiniTracker& tracker) {
+        if (!dims) dims = tracker.model().dimensions(), surface = tracker.surface();
+        track.add_frame(obs.frame, tracker.model().he15(step.pose));
         for (const CenterlinePoint& p : obs.centerline) {
           std::snprintf(buf, sizeof buf, "%d,%c,%.4f,%.4f,%.4f,%d\n", obs.frame, "xyz"[p.axis],
                         p.position.x(), p.position.y(), p.position.z(), p.voxels);
@@ -214,29 +225,34 @@ TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
         }
       });
   CsvWriter body(diag / "body_dimensions.csv", {"dimension", "value"});
-  const std::pair<const char*, double> values[] = {{"torso_half", dims->torso_half},
-                                                   {"shoulder_half", dims->shoulder_half},
-                                                   {"d_s", dims->d_s},
-                                                   {"d_h", dims->d_h},
-                                                   {"head", dims->head},
-                                                   {"upper_arm", dims->upper_arm},
-                                                   {"forearm", dims->forearm},
-                                                   {"thigh", dims->thigh},
-                                                   {"calf", dims->calf},
-                                                   {"root_above_hips", dims->root_above_hips},
-                                                   {"skullbase_fraction", dims->skullbase_fraction},
-                                                   {"wrist_fraction", dims->wrist_fraction}};
+  const std::pair<const char*, double> values[] = {
+      {"torso_half", dims->torso_half},
+      {"spine_pivot", dims->spine_pivot},
+      {"shoulder_half", dims->shoulder_half},
+      {"d_s", dims->d_s},
+      {"d_h", dims->d_h},
+      {"head", dims->head},
+      {"upper_arm", dims->upper_arm},
+      {"forearm", dims->forearm},
+      {"hand", dims->hand},
+      {"thigh", dims->thigh},
+      {"calf", dims->calf},
+      {"foot", dims->foot},
+      {"foot_pitch", dims->foot_pitch},
+      {"root_above_hips", dims->root_above_hips},
+      {"root_forward", dims->root_forward},
+      {"skullbase_fraction", dims->skullbase_fraction}};
   for (const auto& [name, value] : values) {
     std::snprintf(buf, sizeof buf, "%s,%.5f\n", name, value);
     body.out() << buf;
   }
-  for (int s = 0; s < kSegmentCount; ++s) {
-    std::snprintf(buf, sizeof buf, "radius_%s,%.5f\n", std::string(segment_name(s)).c_str(),
-                  dims->radius[s]);
-    body.out() << buf;
+  for (int c = 0; c < kCapsuleCount; ++c) {
+    const std::string name(capsule_name(c));
+    for (const auto& [end, radius] : {std::pair{"a", (*surface)[c].ra}, {"b", (*surface)[c].rb}}) {
+      std::snprintf(buf, sizeof buf, "capsule_%s_radius_%s,%.5f\n", name.c_str(), end, radius);
+      body.out() << buf;
+    }
   }
-  std::snprintf(buf, sizeof buf, "torso_width,%.5f\n", dims->torso_width);
-  body.out() << buf;
   body.commit();
   centerline.commit();
   timings.commit();

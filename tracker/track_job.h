@@ -26,6 +26,10 @@ struct TrackOptions {
   // (Moschini's EKF smooths it; with its random-walk model it lags a moving body, which costs
   // 1-18 mm on simcap's datasets, tracker/MOSCHINI.md).
   std::string filter = "none";
+  // moschini: every frame starts from its ground-truth pose instead of the previous estimate
+  // (needs gt/joints3d.csv): what is left is the error of the body model and the cues, without
+  // the search's.
+  bool oracle = false;
   bool quiet = false;
   double sik_noise_m = 0.0;  // sik: Gaussian noise on the end-effectors, metres
   std::uint64_t seed = 1;    // sik: seed of that noise
@@ -45,7 +49,7 @@ TrackSummary track_dataset(const std::filesystem::path& dataset, const std::file
 // in frame order, and `sink` sees every frame in order. `max_frames` < 0 means all. Used by
 // track_dataset and by `simcap bench track`.
 using MoschiniSink = std::function<void(const tracker::Observation&, const tracker::TrackStep&,
-                                        const tracker::StickModel&)>;
+                                        const tracker::MoschiniTracker&)>;
 TrackSummary run_moschini(const std::filesystem::path& dataset, const TrackOptions& options,
                           int max_frames, const MoschiniSink& sink);
 

@@ -28,7 +28,7 @@ int run(const BenchTrackOptions& o) {
   const TrackSummary s =
       run_moschini(o.dataset, options, o.frames,
                    [&](const tracker::Observation& obs, const tracker::TrackStep& step,
-                       const tracker::StickModel&) {
+                       const tracker::MoschiniTracker&) {
                      silhouettes += obs.silhouettes_ms;
                      hull += obs.hull_ms;
                      centerline += obs.centerline_ms;

@@ -35,8 +35,8 @@ void add_track(CLI::App& app, Action& action) {
       ->check(CLI::Range(0.005, 0.2))
       ->capture_default_str();
   cmd->add_option("--joints", options->joints,
-                  "moschini: joint set, moschini (Table 5.1, 23-parameter EKF) or urdf (adds the "
-                  "hip twists)")
+                  "moschini: joint set, moschini (Table 5.1, 23-parameter EKF) or urdf (adds hip "
+                  "twists, a spine joint, wrists and ankles)")
       ->check(CLI::IsMember({"moschini", "urdf"}))
       ->capture_default_str();
   cmd->add_option("--appearance", options->appearance,
@@ -49,6 +49,9 @@ void add_track(CLI::App& app, Action& action) {
                   "smooths the fits; it lags a moving body)")
       ->check(CLI::IsMember({"none", "ekf"}))
       ->capture_default_str();
+  cmd->add_flag("--oracle", options->oracle,
+                "moschini: start every frame from its ground-truth pose (a diagnostic: the error "
+                "left is the body model's and the cues', not the search's)");
   cmd->add_option("--sik-noise", options->sik_noise_m,
                   "sik: standard deviation of the noise added to the end-effectors, metres")
       ->check(CLI::Range(0.0, 1.0))
@@ -61,6 +64,7 @@ void add_track(CLI::App& app, Action& action) {
       "  simcap track out/studio4 -o out/track_bg --silhouettes bgsub --init auto\n"
       "  simcap track out/studio4 -o out/track_masks --appearance off\n"
       "  simcap track out/studio4 -o out/track_thesis --filter ekf --joints moschini\n"
+      "  simcap track out/studio4 -o out/track_oracle --oracle\n"
       "  simcap track out/studio4 -o out/track_sik --method sik --sik-noise 0.02\n"
       "Writes TRACK/joints3d.csv (frame,joint,x,y,z; the HE15 joints in H-Anim names) and\n"
       "TRACK/diagnostics/: centerline.csv, timings.csv, reinitializations.csv,\n"

@@ -1,11 +1,15 @@
 // Test support: silhouette rays of a capsule body seen by a ring of six cameras, optionally
-// coloured by the part each pixel shows, and a walking pose to look at.
+// coloured by the part each pixel shows, and a walking pose to look at. The capsules are traced
+// exactly (round cones), not with the tracker's own distance.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <opencv2/core.hpp>
 #include <vector>
 
+#include "core/camera.h"
+#include "tracker/body_surface.h"
 #include "tracker/icp_targets.h"
 #include "tracker/stick_model.h"
 
@@ -16,14 +20,22 @@ using Palette = std::array<std::array<std::uint8_t, 3>, tracker::kSegmentCount>;
 
 // Where the cameras stand: azimuths around the torso, 4 m away and 1 m above it.
 std::vector<double> camera_ring(int cameras = 6);
+// The camera at `azimuth` looking at the torso of `pose` (320 x 480 pixels).
+Camera ring_camera(const tracker::StickPose& pose, double azimuth);
 
-// The rays through every pixel (on a `stride` pixel grid) that sees the capsules of `pose` (a
-// stick model with radii). With a palette, each ray carries the colour of the front-most capsule
-// it meets, shaded by a light from above (factor 0.5–1), and `shown` gets that capsule.
+// The rays through every pixel (on a `stride` pixel grid) that sees the capsules of `surface` on
+// `pose`. With a palette, each ray carries the colour of the part whose capsule it meets first,
+// shaded by a light from above (factor 0.5–1), and `shown` gets that part (a Segment).
 std::vector<tracker::SilhouetteRay> silhouette_rays(
-    const tracker::StickModel& model, const tracker::StickPose& pose, int stride,
-    const Palette* palette = nullptr, std::vector<int>* shown = nullptr,
-    const std::vector<double>& azimuths = camera_ring());
+    const tracker::StickModel& model, const tracker::BodySurface& surface,
+    const tracker::StickPose& pose, int stride, const Palette* palette = nullptr,
+    std::vector<int>* shown = nullptr, const std::vector<double>& azimuths = camera_ring());
+
+// Each ring camera's silhouette of the capsules (255 where a pixel's ray meets one).
+std::vector<cv::Mat> silhouette_masks(const tracker::StickModel& model,
+                                      const tracker::BodySurface& surface,
+                                      const tracker::StickPose& pose,
+                                      const std::vector<double>& azimuths = camera_ring());
 
 // Distance from x to the segment [a, b].
 double segment_distance(const Eigen::Vector3d& x, const Eigen::Vector3d& a,

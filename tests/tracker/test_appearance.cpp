@@ -17,9 +17,26 @@ using testing::silhouette_rays;
 
 constexpr std::array<std::uint8_t, 3> kShirt = {170, 70, 40}, kSkin = {120, 150, 210},
                                       kTrousers = {95, 75, 60};
-// Short sleeves: the upper arms wear the shirt, the forearms (and hands) are bare.
-constexpr Palette kDressed = {kShirt, kSkin,     kShirt,    kSkin,     kShirt,
-                              kSkin,  kTrousers, kTrousers, kTrousers, kTrousers};
+// Short sleeves: the chest and upper arms wear the shirt, the head, forearms and hands are bare,
+// the trousers cover the pelvis and the legs (and the feet: no shoes).
+constexpr Palette kDressed = {kTrousers, kShirt,    kSkin,     kShirt,    kSkin,
+                              kSkin,     kShirt,    kSkin,     kSkin,     kTrousers,
+                              kTrousers, kTrousers, kTrousers, kTrousers, kTrousers};
+
+const StickModel& body() {
+  static const StickModel model(testing::capsule_body(), JointSet::urdf);
+  return model;
+}
+
+std::vector<SilhouetteRay> dressed_rays(const StickPose& pose, std::vector<int>* shown = nullptr,
+                                        const Palette& palette = kDressed) {
+  return silhouette_rays(body(), testing::capsule_surface(), pose, 3, &palette, shown);
+}
+
+AppearanceModel learned(const Palette& palette = kDressed) {
+  return {body(), testing::capsule_surface(), testing::walking_pose(),
+          dressed_rays(testing::walking_pose(), nullptr, palette)};
+}
 
 std::uint16_t bits(std::initializer_list<int> segments) {
   std::uint16_t b = 0;
@@ -37,16 +54,14 @@ StickPose arm_across() {
 }
 
 TEST(AppearanceModel, TellsThePartsApartOnAnotherPose) {
-  const StickModel model(testing::capsule_body(), JointSet::urdf);
-  const AppearanceModel appearance(model, testing::walking_pose(),
-                                   silhouette_rays(model, testing::walking_pose(), 3, &kDressed));
-  EXPECT_EQ(appearance.learned_parts(), 6);
+  const AppearanceModel appearance = learned();
+  EXPECT_EQ(appearance.learned_parts(), 9) << "every kind of part, left and right together";
   std::vector<int> shown;
-  const auto rays = silhouette_rays(model, arm_across(), 3, &kDressed, &shown);
+  const auto rays = dressed_rays(arm_across(), &shown);
   ASSERT_GT(rays.size(), 1000u);
-  const std::uint16_t legs = bits({kLThigh, kLCalf, kRThigh, kRCalf});
-  const std::uint16_t forearms = bits({kLForearm, kRForearm});
-  const std::uint16_t shirt = bits({kTorso, kLUpperArm, kRUpperArm});
+  const std::uint16_t legs = bits({kPelvis, kLThigh, kLCalf, kLFoot, kRThigh, kRCalf, kRFoot});
+  const std::uint16_t bare = bits({kHead, kLForearm, kLHand, kRForearm, kRHand});
+  const std::uint16_t shirt = bits({kChest, kLUpperArm, kRUpperArm});
   int missed = 0;
   for (size_t i = 0; i < rays.size(); ++i) {
     const std::uint16_t parts = appearance.parts(rays[i].colour);
@@ -54,7 +69,7 @@ TEST(AppearanceModel, TellsThePartsApartOnAnotherPose) {
     const auto& colour = kDressed[shown[i]];
     // Each material rules out the parts that never wear it.
     const std::uint16_t ruled_out = colour == kSkin    ? shirt | legs
-                                    : colour == kShirt ? forearms | legs
+                                    : colour == kShirt ? bare | legs
                                                        : static_cast<std::uint16_t>(~legs);
     EXPECT_EQ(parts & ruled_out, 0) << "ray " << i << " shows " << segment_name(shown[i]);
   }
@@ -63,31 +78,25 @@ TEST(AppearanceModel, TellsThePartsApartOnAnotherPose) {
 
 TEST(AppearanceModel, RulesNothingOutWithoutEvidence) {
   EXPECT_EQ(AppearanceModel().parts({10, 200, 30}), kAllParts);
-  const StickModel model(testing::capsule_body(), JointSet::urdf);
   Palette plain;
   plain.fill(kShirt);
-  const AppearanceModel one_colour(model, testing::walking_pose(),
-                                   silhouette_rays(model, testing::walking_pose(), 3, &plain));
-  EXPECT_EQ(one_colour.parts(kShirt), kAllParts) << "every part wears the shirt";
-  const AppearanceModel dressed(model, testing::walking_pose(),
-                                silhouette_rays(model, testing::walking_pose(), 3, &kDressed));
+  EXPECT_EQ(learned(plain).parts(kShirt), kAllParts) << "every part wears the shirt";
+  const AppearanceModel dressed = learned();
   EXPECT_EQ(dressed.parts({20, 200, 20}), kAllParts) << "a colour no part wears (a foot, a prop)";
   EXPECT_EQ(dressed.parts({20, 20, 25}), kAllParts) << "too dark to have a chromaticity";
 }
 
 TEST(PoseRefiner, ColouredRaysPlaceAForearmInFrontOfTheTorso) {
-  const StickModel model(testing::capsule_body(), JointSet::urdf);
+  const StickModel& model = body();
   const StickPose truth = arm_across();
-  const AppearanceModel appearance(model, testing::walking_pose(),
-                                   silhouette_rays(model, testing::walking_pose(), 3, &kDressed));
+  const AppearanceModel appearance = learned();
   // Two cameras in front of the body and two behind it: from there the forearm lies inside the
   // torso's silhouette.
   const StickGeometry g = model.geometry(truth);
-  const Eigen::Vector3d front = 0.5 * (g.proximal[kLForearm] + g.distal[kLForearm]) -
-                                0.5 * (g.proximal[kTorso] + g.distal[kTorso]);
+  const Eigen::Vector3d front = 0.5 * (g.proximal[kLForearm] + g.distal[kLForearm]) - truth.t0;
   const double azimuth = std::atan2(front.x(), front.z());
   IcpTargets plain, coloured;
-  plain.rays = silhouette_rays(model, truth, 3, &kDressed, nullptr,
+  plain.rays = silhouette_rays(model, testing::capsule_surface(), truth, 3, &kDressed, nullptr,
                                {azimuth - 0.4, azimuth + 0.4, azimuth + 2.7, azimuth + 3.5});
   coloured.rays = plain.rays;
   for (SilhouetteRay& ray : coloured.rays) ray.parts = appearance.parts(ray.colour);
@@ -98,7 +107,8 @@ TEST(PoseRefiner, ColouredRaysPlaceAForearmInFrontOfTheTorso) {
   StickPose start = truth;
   start.theta[kLElbow] = -1.2;
   ASSERT_GT((hand(start) - hand(truth)).norm(), 0.1);
-  const PoseRefiner refiner(model, testing::converging_without_priors());
+  const PoseRefiner refiner(model, testing::capsule_surface(),
+                            testing::converging_without_priors());
   StickPose from_plain = start, from_coloured = start;
   refiner.refine(plain, from_plain);
   refiner.refine(coloured, from_coloured);

@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "tests/tracker/ray_rig.h"
 #include "tests/tracker/refine_test_support.h"
 #include "tracker/pose_refiner.h"
 #include "tracker/silhouette_view.h"
@@ -39,52 +40,22 @@ TEST(SilhouetteView, FindsTheNearestSilhouettePixel) {
   EXPECT_TRUE(SilhouetteView(cam, cv::Mat::zeros(120, 160, CV_8U)).empty());
 }
 
-// Cameras around the body; the silhouettes are the capsules of `pose` drawn by sampling their
-// surfaces densely (independent of the refinement's own geometry code).
-std::vector<cv::Mat> capsule_masks(const StickModel& model, const StickPose& pose,
-                                   const std::vector<Camera>& cams) {
-  const StickGeometry g = model.geometry(pose);
-  const BodyDimensions& dims = model.dimensions();
-  std::vector<cv::Mat> masks;
-  for (const Camera& cam : cams) {
-    cv::Mat m = cv::Mat::zeros(cam.height, cam.width, CV_8U);
-    for (int s = 0; s < kSegmentCount; ++s) {
-      const Eigen::Vector3d a = g.line_proximal[s], b = g.line_distal[s];
-      const Eigen::Vector3d axis = (b - a).normalized();
-      const Eigen::Vector3d e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
-      for (int i = 0; i <= 100; ++i) {
-        for (int k = 0; k < 72; ++k) {
-          const double phi = 2 * std::numbers::pi * k / 72;
-          const Eigen::Vector3d x = a + (b - a) * (i / 100.0) +
-                                    dims.radius[s] * (std::cos(phi) * e1 + std::sin(phi) * e2);
-          if (const auto px = cam.project(x))
-            cv::circle(m, {int(px->x()), int(px->y())}, 1, 255, -1);
-        }
-      }
-    }
-    masks.push_back(m);
-  }
-  return masks;
-}
-
 TEST(PoseRefiner, RimResidualsPullAnOverhangingArmInside) {
   const StickModel model(testing::capsule_body(), JointSet::urdf);
   StickPose truth;
   truth.t0 = {0, 1.1, 0};
   truth.theta[kLShoulder1] = 0.6;
   truth.theta[kLElbow] = -0.5;
+  const std::vector<double> azimuths = testing::camera_ring(4);
   std::vector<Camera> cams;
-  for (int c = 0; c < 4; ++c) {
-    const double a = std::numbers::pi / 2 * c + 0.4;
-    cams.push_back(
-        Camera::look_at("c", 320, 240, 1.0, {3 * std::sin(a), 1.8, 3 * std::cos(a)}, {0, 1, 0}));
-  }
-  const auto masks = capsule_masks(model, truth, cams);
+  for (const double a : azimuths) cams.push_back(testing::ring_camera(truth, a));
+  const auto masks = testing::silhouette_masks(model, testing::capsule_surface(), truth, azimuths);
   std::vector<SilhouetteView> views;
   for (size_t c = 0; c < cams.size(); ++c) views.emplace_back(cams[c], masks[c]);
   IcpTargets targets;
   targets.views = &views;
-  const PoseRefiner refiner(model, testing::converging_without_priors());
+  const PoseRefiner refiner(model, testing::capsule_surface(),
+                            testing::converging_without_priors());
   // Lifted 0.4 rad too far: the arm sticks out of every silhouette.
   StickPose pose = truth;
   pose.theta[kLShoulder1] = 1.0;

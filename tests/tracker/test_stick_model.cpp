@@ -52,11 +52,12 @@ TEST(StickModel, JointsStayConnectedAndSticksKeepTheirLengths) {
   for (int s = 0; s < kSegmentCount; ++s) {
     EXPECT_NEAR((g.distal[s] - g.proximal[s]).norm(), model.length(s), 1e-12);
     const int p = segment_parent(s);
-    if (p == kLUpperArm || p == kRUpperArm || p == kLThigh || p == kRThigh) {
+    if (!is_trunk(p) && p >= 0) {
       EXPECT_LT((g.proximal[s] - g.distal[p]).norm(), 1e-12);
     }
   }
-  EXPECT_LT((g.proximal[kHead] - g.distal[kTorso]).norm(), 1e-12);
+  EXPECT_LT((g.proximal[kHead] - g.distal[kChest]).norm(), 1e-12);
+  EXPECT_LT((g.proximal[kChest] - g.distal[kPelvis]).norm(), 1e-12);
 }
 
 TEST(StickModel, LimitsClampOrWrap) {

@@ -74,6 +74,33 @@ TEST(TrackJob, TracksTheCapsuleBodyWithGroundTruthSilhouettes) {
   EXPECT_EQ(read_text(out / "t" / "joints3d.csv"), read_text(out / "v" / "joints3d.csv"));
 }
 
+// Started from the truth on every frame, the fit lands closer to it than the tracker does.
+TEST(TrackJob, TheOracleStartsEveryFrameFromTheTruth) {
+  TempDir out;
+  std::string log;
+  for (const std::string name : {"t", "o"}) {
+    ASSERT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / name).string() +
+                             (name == "o" ? " --oracle" : "") + " --quiet",
+                         &log),
+              0)
+        << log;
+  }
+  const fs::path gt = dataset() / "gt" / "joints3d.csv";
+  const double oracle = mpjpe_mm(gt, out / "o" / "joints3d.csv");
+  EXPECT_LT(oracle, 25.0);
+  EXPECT_LE(oracle, mpjpe_mm(gt, out / "t" / "joints3d.csv") + 1.0);
+  // It needs the ground truth of every frame.
+  const fs::path no_gt = out / "no_gt";
+  fs::copy(dataset(), no_gt, fs::copy_options::recursive);
+  fs::remove_all(no_gt / "gt");
+  EXPECT_EQ(run_simcap("track " + no_gt.string() + " -o " + (out / "x").string() +
+                           " --init auto --oracle --quiet",
+                       &log),
+            1);
+  EXPECT_NE(log.find("joints3d.csv: missing (needed by --oracle)"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(out / "x" / "joints3d.csv"));
+}
+
 TEST(TrackJob, RunsMoschinisEkfOnHisJointSet) {
   TempDir out;
   std::string log;
