@@ -22,6 +22,7 @@ MoschiniTracker::MoschiniTracker(const BodyDimensions& dims, const BodySurface& 
       options_(options),
       icp_(model_, surface, options.icp),
       refiner_(model_, surface, options.icp.refine),
+      polisher_(model_, surface, options.polish),
       filter_(model_, options.filter) {}
 
 IcpTargets MoschiniTracker::targets_of(const Observation& obs) {
@@ -154,6 +155,7 @@ TrackStep MoschiniTracker::step(const Observation& obs) {
     refiner_.refine(targets, refined);
     if (refiner_.cost(targets, refined) < refiner_.cost(targets, measured)) measured = refined;
     resolve_crossed_limbs(targets, measured);
+    polisher_.refine(targets, measured);
     diagnose(measured, obs, out);
     const RecoveryOptions& rec = options_.recovery;
     char why[96] = "";

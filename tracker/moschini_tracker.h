@@ -1,5 +1,5 @@
 // Moschini's tracking loop (Alg. 3) on observed frames: articulated ICP from the previous pose,
-// then the EKF; detects lost tracking and re-initializes instead of drifting.
+// a final refinement, then the EKF; detects lost tracking and re-initializes instead of drifting.
 #pragma once
 
 #include <string>
@@ -27,6 +27,15 @@ struct RecoveryOptions {
 struct TrackerOptions {
   JointSet joints = JointSet::urdf;
   IcpOptions icp;
+  // The last refinement of each frame, once the hypotheses are decided: without the centerline
+  // points. They carry the hull's phantom volume (the centroid of a slice through two merged
+  // legs lies between them) and pull the fit off the body, yet they keep the search on it.
+  RefineOptions polish = [] {
+    RefineOptions o;
+    o.centerline_weight = 0;
+    o.iterations = 8;
+    return o;
+  }();
   FilterNoise filter;
   RecoveryOptions recovery;
   bool use_filter = true;
@@ -80,6 +89,7 @@ class MoschiniTracker {
   TrackerOptions options_;
   ArticulatedIcp icp_;
   PoseRefiner refiner_;
+  PoseRefiner polisher_;
   PoseFilter filter_;
   StickPose pose_;
   bool started_ = false;
