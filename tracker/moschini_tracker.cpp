@@ -147,13 +147,18 @@ TrackStep MoschiniTracker::step(const Observation& obs) {
     IcpTargets targets = targets_of(obs);
     const StickPose prediction = pose_;
     targets.prediction = &prediction;
-    // Two hypotheses: Moschini's traversal, which can jump to where the centerline now is, and
-    // the joint refinement alone from the previous pose, which cannot be led astray by a limb
-    // whose centroids merged with another part's.
-    StickPose refined = measured;
-    icp_.fit(targets, measured);
-    refiner_.refine(targets, refined);
-    if (refiner_.cost(targets, refined) < refiner_.cost(targets, measured)) measured = refined;
+    // The joint refinement from the previous pose, which cannot be led astray by a limb whose
+    // centroids merged with another part's; with TrackerOptions::traversal also Moschini's
+    // traversal, which can jump to where the centerline now is.
+    if (options_.traversal) {
+      StickPose traversed = measured;
+      icp_.fit(targets, traversed);
+      refiner_.refine(targets, measured);
+      if (refiner_.cost(targets, traversed) < refiner_.cost(targets, measured))
+        measured = traversed;
+    } else {
+      refiner_.refine(targets, measured);
+    }
     resolve_crossed_limbs(targets, measured);
     polisher_.refine(targets, measured);
     diagnose(measured, obs, out);

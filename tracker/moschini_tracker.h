@@ -26,7 +26,14 @@ struct RecoveryOptions {
 
 struct TrackerOptions {
   JointSet joints = JointSet::urdf;
-  IcpOptions icp;
+  // The hypotheses' refinements need only find the right basin: a quarter of the rays and a
+  // coarser outline.
+  IcpOptions icp = [] {
+    IcpOptions o;
+    o.refine.ray_every = 2;
+    o.refine.rim_step_m = 0.08;
+    return o;
+  }();
   // The last refinement of each frame, once the hypotheses are decided: without the centerline
   // points. They carry the hull's phantom volume (the centroid of a slice through two merged
   // legs lies between them) and pull the fit off the body, yet they keep the search on it.
@@ -39,6 +46,11 @@ struct TrackerOptions {
   FilterNoise filter;
   RecoveryOptions recovery;
   bool use_filter = true;
+  // Each frame also tries Moschini's hierarchical traversal (Alg. 2) from the previous pose and
+  // keeps whichever fit costs less. Off, the joint refinement alone starts from the previous
+  // pose; the traversal then only serves recovery and --init auto (its jumps to where the
+  // centerline is lose more limbs than they find on simcap's datasets, see MOSCHINI.md).
+  bool traversal = false;
 };
 
 struct TrackStep {

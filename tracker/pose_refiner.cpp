@@ -50,16 +50,11 @@ struct PointJacobian {
 
 // Accumulates weighted residuals into the normal equations and the cost.
 class Normal {
-  using Mat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, PointJacobian::kMax,
-                            PointJacobian::kMax>;
-  using Vec = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, PointJacobian::kMax, 1>;
-
  public:
-  Normal(const StickModel& model, const StickGeometry& g, const StickPose& pose, Eigen::MatrixXd* H,
+  using Chains = std::array<std::vector<int>, kSegmentCount>;
+  Normal(const Chains& chains, const StickGeometry& g, const StickPose& pose, Eigen::MatrixXd* H,
          Eigen::VectorXd* rhs)
-      : g_(g), pose_(pose), H_(H), rhs_(rhs) {
-    for (int s = 0; s < kSegmentCount; ++s) chains_[s] = model.chain_angles(s);
-  }
+      : g_(g), pose_(pose), H_(H), rhs_(rhs), chains_(chains) {}
 
   // d(point)/d(parameters) for a point carried by `segment`: the root's translation, its
   // rotation as a left increment about t0, then the chain's angles.
@@ -77,25 +72,37 @@ class Normal {
     }
     return j;
   }
-  // A vector residual r (data - model) whose model point has Jacobian j.
+  // A vector residual r (data - model) whose model point has Jacobian j. (The products are
+  // written out: for at most 15 columns, Eigen's general matrix product costs more.)
   void add(const PointJacobian& j, const Eigen::Vector3d& r, double w2) {
     cost_ += w2 * r.squaredNorm();
     ++count_;
     if (!H_) return;
-    const auto J = j.J.leftCols(j.n);
-    const Mat JtJ = w2 * J.transpose() * J;
-    const Vec Jtr = w2 * J.transpose() * r;
-    scatter(j, JtJ, Jtr);
+    for (int a = 0; a < j.n; ++a) {
+      const auto ja = j.J.col(a);
+      (*rhs_)(j.index[a]) += w2 * ja.dot(r);
+      for (int b = a; b < j.n; ++b) {
+        const double v = w2 * ja.dot(j.J.col(b));
+        (*H_)(j.index[a], j.index[b]) += v;
+        if (b != a) (*H_)(j.index[b], j.index[a]) += v;
+      }
+    }
   }
   // A scalar residual e (minimized towards 0) whose gradient is n^T times the Jacobian j.
   void add_scalar(const PointJacobian& j, const Eigen::Vector3d& n, double e, double w2) {
     cost_ += w2 * e * e;
     ++count_;
     if (!H_) return;
-    const Vec g = j.J.leftCols(j.n).transpose() * n;
-    const Mat gg = w2 * g * g.transpose();
-    const Vec ge = -w2 * e * g;
-    scatter(j, gg, ge);
+    std::array<double, PointJacobian::kMax> g;
+    for (int a = 0; a < j.n; ++a) g[a] = j.J.col(a).dot(n);
+    for (int a = 0; a < j.n; ++a) {
+      (*rhs_)(j.index[a]) -= w2 * e * g[a];
+      for (int b = a; b < j.n; ++b) {
+        const double v = w2 * g[a] * g[b];
+        (*H_)(j.index[a], j.index[b]) += v;
+        if (b != a) (*H_)(j.index[b], j.index[a]) += v;
+      }
+    }
   }
   // A scalar residual e on one parameter with slope `slope`.
   void add_parameter(int parameter, double slope, double e) {
@@ -115,17 +122,11 @@ class Normal {
   double cost() const { return count_ ? cost_ / count_ : 0.0; }
 
  private:
-  void scatter(const PointJacobian& j, const Mat& JtJ, const Vec& Jtr) {
-    for (int a = 0; a < j.n; ++a) {
-      (*rhs_)(j.index[a]) += Jtr(a);
-      for (int b = 0; b < j.n; ++b) (*H_)(j.index[a], j.index[b]) += JtJ(a, b);
-    }
-  }
   const StickGeometry& g_;
   const StickPose& pose_;
   Eigen::MatrixXd* H_;
   Eigen::VectorXd* rhs_;
-  std::array<std::vector<int>, kSegmentCount> chains_;
+  const Chains& chains_;
   double cost_ = 0;
   int count_ = 0;
 };
@@ -148,7 +149,9 @@ void add_rim(const SilhouetteView& view, const PlacedSurface& surface, const Ref
 
 PoseRefiner::PoseRefiner(const StickModel& model, const BodySurface& surface,
                          const RefineOptions& options)
-    : model_(&model), surface_(surface), options_(options) {}
+    : model_(&model), surface_(surface), options_(options) {
+  for (int s = 0; s < kSegmentCount; ++s) chains_[s] = model.chain_angles(s);
+}
 
 // Which stick each residual belongs to, decided once per iteration (as ICP fixes its closest
 // points before solving) so that a candidate step is judged on the same residuals.
@@ -167,10 +170,11 @@ struct PoseRefiner::Associations {
   // Rays that no capsule their colour allows comes within RefineOptions::ray_max_miss_m of:
   // counted at that miss, so that a pose cannot lower its cost by leaving rays unexplained.
   int lost_rays = 0;
+  std::vector<int> owner;  // per ray, the capsule it was given to (-1: none or not used)
 };
 
-PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
-                                                 const StickPose& pose) const {
+PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets, const StickPose& pose,
+                                                 const Associations* previous) const {
   const StickGeometry g = model_->geometry(pose);
   Associations a;
   // Centerline points: closest stick (Moschini's data-to-model matching), X84 inliers.
@@ -207,22 +211,33 @@ PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets,
   // it would reject every ray that still pulls a limb into place; misses beyond any limb's
   // reach count at that reach.
   if (!targets.rays.empty() && options_.ray_weight > 0) {
-    for (size_t i = 0; i < targets.rays.size(); ++i) {
+    a.owner.assign(targets.rays.size(), -1);
+    Eigen::Vector3d dir;
+    auto miss = [&](const SilhouetteRay& ray, int c, double* d) {
+      const PlacedCapsule& capsule = surface[c];
+      return capsule.distance(nearest_on_ray(ray, capsule.a, capsule.a + capsule.ab), d, &dir);
+    };
+    for (size_t i = 0; i < targets.rays.size(); i += options_.ray_every) {
       const SilhouetteRay& ray = targets.rays[i];
       double best = std::numeric_limits<double>::infinity(), d;
       int owner = -1;
-      Eigen::Vector3d dir;
-      for (int c = 0; c < kCapsuleCount; ++c) {
+      // The capsule that held the ray at the last association holds it again, mostly: tried
+      // first, it settles a ray still deep inside it at once and bounds the others tightly.
+      const int hint = previous ? previous->owner[i] : -1;
+      if (hint >= 0 && miss(ray, hint, &d)) best = d, owner = hint;
+      for (int c = 0; c < kCapsuleCount && best >= -options_.settled_depth_m; ++c) {
         const PlacedCapsule& capsule = surface[c];
-        if (!(ray.parts >> capsule.segment & 1)) continue;
-        // A sphere bounds its capsule's distance from below: most rays pass deep inside one
-        // part, and the others need no exact test.
-        if ((capsule.centre - ray.origin).cross(ray.direction).norm() - capsule.bound >= best) {
+        if (c == hint || !(ray.parts >> capsule.segment & 1)) continue;
+        // A sphere bounds its capsule's distance from below: skip the capsule when the ray
+        // passes its sphere no nearer than `best` (in squares; always when best < -bound).
+        const double reach = capsule.bound + best;
+        if (reach <= 0 ||
+            (capsule.centre - ray.origin).cross(ray.direction).squaredNorm() >= reach * reach) {
           continue;
         }
-        const Eigen::Vector3d q = nearest_on_ray(ray, capsule.a, capsule.a + capsule.ab);
-        if (capsule.distance(q, &d, &dir) && d < best) best = d, owner = c;
+        if (miss(ray, c, &d) && d < best) best = d, owner = c;
       }
+      a.owner[i] = owner;
       if (owner < 0 || best > options_.ray_max_miss_m) {
         ++a.lost_rays;
       } else if (best < -options_.settled_depth_m) {
@@ -239,7 +254,7 @@ double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
                              const StickPose& pose, const StickPose* start, Eigen::MatrixXd* H,
                              Eigen::VectorXd* rhs) const {
   const StickGeometry g = model_->geometry(pose);
-  Normal normal(*model_, g, pose, H, rhs);
+  Normal normal(chains_, g, pose, H, rhs);
   // Centerline points: only the distance across a stick's line counts, except past a free tip.
   const double wp2 = options_.centerline_weight * options_.centerline_weight;
   for (const auto& [i, s] : a.points) {
@@ -308,7 +323,8 @@ double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
 }
 
 double PoseRefiner::cost(const IcpTargets& targets, const StickPose& pose) const {
-  return evaluate(targets, associate(targets, pose), pose, targets.prediction, nullptr, nullptr);
+  return evaluate(targets, associate(targets, pose, nullptr), pose, targets.prediction, nullptr,
+                  nullptr);
 }
 
 void PoseRefiner::refine(const IcpTargets& targets, StickPose& pose) const {
@@ -320,10 +336,11 @@ void PoseRefiner::refine(const IcpTargets& targets, StickPose& pose) const {
   // optimistic far from the data) after one that does not.
   double lambda = options_.damping;
   const StickPose start = targets.prediction ? *targets.prediction : pose;
+  Associations assoc;
   for (int it = 0; it < options_.iterations; ++it) {
     Eigen::MatrixXd H = Eigen::MatrixXd::Zero(np, np);
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(np);
-    const Associations assoc = associate(targets, pose);
+    assoc = associate(targets, pose, it > 0 ? &assoc : nullptr);
     const double cost = evaluate(targets, assoc, pose, &start, &H, &rhs);
     const double scale = H.diagonal().mean();
     if (!(scale > 0)) return;

@@ -23,6 +23,7 @@ struct RefineOptions {
   int containment_search = 6;       // voxels searched around a sample for the nearest occupied
   // Per silhouette ray, on its distance outside the nearest capsule (0 when a capsule meets it).
   double ray_weight = 1.0;
+  int ray_every = 1;  // uses every n-th ray of the targets' (they come row by row per camera)
   // Rays passing farther from every capsule count at this miss, without pulling: a ray this far
   // from the body's parts cannot tell where they should go.
   double ray_max_miss_m = 0.6;
@@ -60,7 +61,10 @@ class PoseRefiner {
 
  private:
   struct Associations;
-  Associations associate(const IcpTargets& targets, const StickPose& pose) const;
+  // With `previous` (the last association of the same targets), each ray's capsule there is
+  // tried first: the result is the same, found sooner.
+  Associations associate(const IcpTargets& targets, const StickPose& pose,
+                         const Associations* previous) const;
   // The cost at `pose` with fixed associations, and the normal equations when H and g are given.
   // With `start`, adds the motion prior towards it.
   double evaluate(const IcpTargets& targets, const Associations& a, const StickPose& pose,
@@ -68,6 +72,7 @@ class PoseRefiner {
   const StickModel* model_;
   BodySurface surface_;
   RefineOptions options_;
+  std::array<std::vector<int>, kSegmentCount> chains_;  // StickModel::chain_angles per segment
 };
 
 }  // namespace simcap::tracker

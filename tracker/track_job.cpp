@@ -79,6 +79,10 @@ TrackSummary run_moschini(const fs::path& dataset_path, const TrackOptions& opti
   TrackerOptions topt;
   topt.joints = parse_joint_set(options.joints);
   topt.use_filter = options.filter == "ekf";
+  if (options.traversal != "on" && options.traversal != "off") {
+    throw Error("--traversal: unknown value '" + options.traversal + "' (expected on or off)");
+  }
+  topt.traversal = options.traversal == "on";
   std::optional<MoschiniTracker> tracker;
   if (options.init == "gt") {
     // The first frame's joints give the sticks and the pose; its silhouettes the capsules, and

@@ -26,6 +26,9 @@ struct TrackOptions {
   // (Moschini's EKF smooths it; with its random-walk model it lags a moving body, which costs
   // 1-18 mm on simcap's datasets, tracker/MOSCHINI.md).
   std::string filter = "none";
+  // moschini: "off" (each frame's fit starts from the previous pose) or "on" (Moschini's
+  // hierarchical ICP traversal is tried too and the lower refinement cost wins).
+  std::string traversal = "off";
   // moschini: every frame starts from its ground-truth pose instead of the previous estimate
   // (needs gt/joints3d.csv): what is left is the error of the body model and the cues, without
   // the search's.

@@ -49,6 +49,11 @@ void add_track(CLI::App& app, Action& action) {
                   "smooths the fits; it lags a moving body)")
       ->check(CLI::IsMember({"none", "ekf"}))
       ->capture_default_str();
+  cmd->add_option("--traversal", options->traversal,
+                  "moschini: on (each frame also tries Moschini's hierarchical ICP traversal and "
+                  "keeps the better fit) or off (the joint refinement from the previous pose)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
   cmd->add_flag("--oracle", options->oracle,
                 "moschini: start every frame from its ground-truth pose (a diagnostic: the error "
                 "left is the body model's and the cues', not the search's)");
@@ -63,7 +68,8 @@ void add_track(CLI::App& app, Action& action) {
       "  simcap track out/studio4 -o out/track\n"
       "  simcap track out/studio4 -o out/track_bg --silhouettes bgsub --init auto\n"
       "  simcap track out/studio4 -o out/track_masks --appearance off\n"
-      "  simcap track out/studio4 -o out/track_thesis --filter ekf --joints moschini\n"
+      "  simcap track out/studio4 -o out/track_thesis --filter ekf --joints moschini --traversal "
+      "on\n"
       "  simcap track out/studio4 -o out/track_oracle --oracle\n"
       "  simcap track out/studio4 -o out/track_sik --method sik --sik-noise 0.02\n"
       "Writes TRACK/joints3d.csv (frame,joint,x,y,z; the HE15 joints in H-Anim names) and\n"

@@ -101,11 +101,12 @@ TEST(TrackJob, TheOracleStartsEveryFrameFromTheTruth) {
   EXPECT_FALSE(fs::exists(out / "x" / "joints3d.csv"));
 }
 
+// The thesis's configuration: his joint set, his traversal on every frame, his EKF.
 TEST(TrackJob, RunsMoschinisEkfOnHisJointSet) {
   TempDir out;
   std::string log;
   ASSERT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / "t").string() +
-                           " --filter ekf --joints moschini --quiet",
+                           " --filter ekf --joints moschini --traversal on --quiet",
                        &log),
             0)
       << log;
@@ -196,6 +197,7 @@ TEST(TrackJob, BadDatasetsGiveClearErrors) {
   EXPECT_NE(run_simcap("track " + dataset().string() + out + " --silhouettes magic", &log), 0);
   EXPECT_NE(run_simcap("track " + dataset().string() + out + " --appearance maybe", &log), 0);
   EXPECT_NE(run_simcap("track " + dataset().string() + out + " --filter kalman", &log), 0);
+  EXPECT_NE(run_simcap("track " + dataset().string() + out + " --traversal sometimes", &log), 0);
 }
 
 }  // namespace
