@@ -1,8 +1,10 @@
 #include "tracker/moschini_tracker.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
+#include <span>
 
 #include "core/error.h"
 
@@ -68,23 +70,69 @@ void MoschiniTracker::diagnose(const StickPose& pose, const Observation& obs,
 }
 
 StickPose MoschiniTracker::best_upright(const Observation& obs, const StickPose* current) const {
-  const UprightCue cue = upright_cue(obs.hull, model_.dimensions());
-  std::vector<StickPose> candidates = upright_hypotheses(model_, cue, options_.recovery.headings);
-  double best_score = std::numeric_limits<double>::infinity();
-  StickPose best;
-  if (current) {
-    best = *current;
-    best_score = score(*current, obs);
+  const IcpTargets targets = targets_of(obs);
+  struct Fit {
+    double score;
+    StickPose pose;
+  };
+  std::vector<Fit> fits;
+  for (StickPose& c : upright_hypotheses(model_, upright_cue(obs.hull, model_.dimensions()),
+                                         options_.recovery.headings)) {
+    icp_.fit(targets, c);
+    fits.push_back({score(c, obs), c});
   }
-  for (StickPose& c : candidates) {
-    icp_.fit(targets_of(obs), c);
-    const double s = score(c, obs);
-    if (s < best_score) {
-      best_score = s;
-      best = c;
+  std::stable_sort(fits.begin(), fits.end(),
+                   [](const Fit& a, const Fit& b) { return a.score < b.score; });
+  Fit best = current ? Fit{options_.recovery.margin * score(*current, obs), *current}
+                     : Fit{std::numeric_limits<double>::infinity(), {}};
+  for (size_t i = 0; i < fits.size(); ++i) {
+    if (static_cast<int>(i) < options_.recovery.searched) {
+      search_limbs(targets, fits[i].pose);
+      fits[i].score = score(fits[i].pose, obs);
+    }
+    if (fits[i].score < best.score) best = fits[i];
+  }
+  return best.pose;
+}
+
+void MoschiniTracker::search_limbs(const IcpTargets& targets, StickPose& pose) const {
+  struct Limb {
+    std::array<int, 4> angles;  // -1: unused
+    double mirror;              // sign of the abduction and twist: 1 on the left, -1 on the right
+    bool arm;
+  };
+  static constexpr std::array<Limb, 4> limbs = {{
+      {{kLShoulder1, kLShoulder2, kLShoulder3, kLElbow}, 1.0, true},
+      {{kRShoulder1, kRShoulder2, kRShoulder3, kRElbow}, -1.0, true},
+      {{kLHip1, kLHip2, kLKnee, -1}, 1.0, false},
+      {{kRHip1, kRHip2, kRKnee, -1}, -1.0, false},
+  }};
+  // Left limbs' angles (abduction, flexion, twist, elbow; abduction, flexion, knee).
+  static constexpr std::array<std::array<double, 4>, 5> arms = {{{0.15, 0.0, 0.0, -0.2},
+                                                                 {0.2, -0.5, 0.3, -1.5},
+                                                                 {0.1, -0.3, 0.8, -1.8},
+                                                                 {0.2, 0.4, 0.0, -0.3},
+                                                                 {0.2, -1.2, 0.0, -0.5}}};
+  static constexpr std::array<std::array<double, 4>, 4> legs = {
+      {{0.0, 0.0, 0.0, 0.0}, {0.0, -0.4, 0.3, 0.0}, {0.0, 0.3, 0.2, 0.0}, {0.0, -0.2, 0.8, 0.0}}};
+  const auto& ranges = model_.ranges();
+  double best = refiner_.cost(targets, pose);
+  for (const Limb& limb : limbs) {
+    const StickPose base = pose;
+    const auto configurations = limb.arm ? std::span<const std::array<double, 4>>(arms)
+                                         : std::span<const std::array<double, 4>>(legs);
+    for (const auto& angles : configurations) {
+      StickPose trial = base;
+      for (int i = 0; i < 4 && limb.angles[i] >= 0; ++i) {
+        // Abduction (first) and an arm's twist (third) turn the other way on the right.
+        const double sign = i == 0 || (limb.arm && i == 2) ? limb.mirror : 1.0;
+        trial.theta[limb.angles[i]] = limit_angle(sign * angles[i], ranges[limb.angles[i]]);
+      }
+      refiner_.refine(targets, trial);
+      const double c = refiner_.cost(targets, trial);
+      if (c < best) best = c, pose = trial;
     }
   }
-  return best;
 }
 
 void MoschiniTracker::resolve_crossed_limbs(const IcpTargets& targets, StickPose& pose) const {

@@ -21,7 +21,11 @@ struct RecoveryOptions {
   double lost_distance_m = 0.05;
   double lost_outside_fraction = 0.25;
   int lost_frames = 3;
-  int headings = 12;  // upright hypotheses around the circle when the feet give no direction
+  int headings = 12;  // upright hypotheses around the circle
+  int searched = 4;   // of them, the best fits whose limbs are searched (search_limbs)
+  // A recovered pose replaces the current fit only when it costs less than this fraction of
+  // it: on a hard frame a wrong pose can cost a little less than a right one.
+  double margin = 0.8;
 };
 
 struct TrackerOptions {
@@ -90,6 +94,10 @@ class MoschiniTracker {
   // The ICP residual and the fraction of the sticks off the hull: what lost tracking is judged by.
   void diagnose(const StickPose& pose, const Observation& obs, TrackStep& out) const;
   StickPose best_upright(const Observation& obs, const StickPose* current) const;
+  // For each limb in turn, restarts it from a few typical configurations (hanging, bent forward,
+  // across the body, back, raised) and keeps the refinement that scores best: far from the
+  // data, a limb's refinement stays in whatever basin it starts in.
+  void search_limbs(const IcpTargets& targets, StickPose& pose) const;
   // When the fitted legs or arms cross (the left foot or knee, hand or elbow, right of the right
   // one in the torso's frame), tries the pair exchanged and keeps whichever the hull and the
   // centerline favour: walking legs pass close by each other, an arm held across the body meets

@@ -288,53 +288,33 @@ UprightCue upright_cue(const Occupancy& hull, const BodyDimensions& dims) {
     }
   }
   cue.top_y = g.origin.y() + g.voxel * (hull.lo.y() + top);
-  // Horizontal centroids of height bands, as fractions of the standing height.
-  const double height = cue.top_y;
-  auto band_centroid = [&](double y0, double y1, int* count) {
-    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-    *count = 0;
-    for (int y = 0; y < hull.size.y(); ++y) {
-      const double wy = g.origin.y() + g.voxel * (hull.lo.y() + y);
-      if (wy < y0 || wy > y1) continue;
-      for (int z = 0; z < hull.size.z(); ++z) {
-        for (int x = 0; x < hull.size.x(); ++x) {
-          if (!hull.cells[(static_cast<size_t>(y) * hull.size.z() + z) * hull.size.x() + x])
-            continue;
-          sum += Eigen::Vector2d(g.origin.x() + g.voxel * (hull.lo.x() + x),
-                                 g.origin.z() + g.voxel * (hull.lo.z() + z));
-          ++*count;
-        }
+  // The horizontal centroid of the torso's height band.
+  const double centroid_y = cue.top_y - dims.head - dims.torso_half;
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  int count = 0;
+  for (int y = 0; y < hull.size.y(); ++y) {
+    const double wy = g.origin.y() + g.voxel * (hull.lo.y() + y);
+    if (std::abs(wy - centroid_y) > 0.5 * dims.torso_half) continue;
+    for (int z = 0; z < hull.size.z(); ++z) {
+      for (int x = 0; x < hull.size.x(); ++x) {
+        if (!hull.cells[(static_cast<size_t>(y) * hull.size.z() + z) * hull.size.x() + x]) continue;
+        sum += Eigen::Vector2d(g.origin.x() + g.voxel * (hull.lo.x() + x),
+                               g.origin.z() + g.voxel * (hull.lo.z() + z));
+        ++count;
       }
     }
-    return *count ? Eigen::Vector2d(sum / *count) : Eigen::Vector2d::Zero();
-  };
-  const double centroid_y = cue.top_y - dims.head - dims.torso_half;
-  int n = 0;
-  cue.torso_xz =
-      band_centroid(centroid_y - 0.5 * dims.torso_half, centroid_y + 0.5 * dims.torso_half, &n);
-  int nf = 0, ns = 0;
-  const Eigen::Vector2d feet = band_centroid(0.0, 0.035 * height, &nf);
-  const Eigen::Vector2d shins = band_centroid(0.10 * height, 0.20 * height, &ns);
-  // Toes reach ~0.11 H in front of the ankles; a smaller offset is not a direction.
-  if (nf > 0 && ns > 0 && (feet - shins).norm() > 0.015 * height) {
-    cue.forward_xz = (feet - shins).normalized();
   }
+  if (count > 0) cue.torso_xz = sum / count;
   return cue;
 }
 
 std::vector<StickPose> upright_hypotheses(const StickModel& model, const UprightCue& cue,
                                           int headings) {
   const BodyDimensions& d = model.dimensions();
-  std::vector<double> yaws;
-  if (cue.forward_xz) {
-    // Facing +Z at yaw 0; yaw ψ faces (sin ψ, cos ψ) in (x, z).
-    const double centre = std::atan2(cue.forward_xz->x(), cue.forward_xz->y());
-    for (int k = -3; k <= 3; ++k) yaws.push_back(centre + k * kPi / 9);
-  } else {
-    for (int k = 0; k < std::max(1, headings); ++k) yaws.push_back(2 * kPi * k / headings);
-  }
   std::vector<StickPose> out;
-  for (const double yaw : yaws) {
+  for (int k = 0; k < std::max(1, headings); ++k) {
+    // Facing +Z at yaw 0; yaw ψ faces (sin ψ, cos ψ) in (x, z).
+    const double yaw = 2 * kPi * k / std::max(1, headings);
     StickPose p;
     p.R0 = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY()).toRotationMatrix();
     p.t0 = Eigen::Vector3d(cue.torso_xz.x(), cue.top_y - d.head - d.torso_half, cue.torso_xz.y());

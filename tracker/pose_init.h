@@ -4,7 +4,6 @@
 
 #include <Eigen/Core>
 #include <map>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,14 +46,12 @@ BodyDimensions dimensions_from_height(double height_m);
 struct UprightCue {
   double top_y = 0;                                    // highest occupied voxel centre (head top)
   Eigen::Vector2d torso_xz = Eigen::Vector2d::Zero();  // hull centroid in the torso's height band
-  // Horizontal direction the person faces, from the feet pointing forward of the shins; empty
-  // when the offset is too small to tell.
-  std::optional<Eigen::Vector2d> forward_xz;
 };
 UprightCue upright_cue(const Occupancy& hull, const BodyDimensions& dims);
 
-// Upright poses at several headings (around the feet's direction when known, else the whole
-// circle), arms hanging slightly apart: starting points for ICP.
+// Upright poses at `headings` headings around the circle, arms hanging slightly apart: starting
+// points for ICP. (The feet do not tell the heading: mid-stride, the line from the shins' centroid
+// to the feet's may point 90 degrees off it.)
 std::vector<StickPose> upright_hypotheses(const StickModel& model, const UprightCue& cue,
                                           int headings);
 
