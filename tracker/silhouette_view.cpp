@@ -3,13 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <opencv2/imgproc.hpp>
+
+#include "tracker/mask_box.h"
 
 namespace simcap::tracker {
 
 SilhouetteView::SilhouetteView(const Camera& camera, const cv::Mat& silhouette, int margin_px)
     : camera_(&camera), silhouette_(silhouette) {
-  const cv::Rect person = cv::boundingRect(silhouette);
+  const cv::Rect person = mask_box(silhouette);
   if (person.empty()) return;
   box_ = cv::Rect(person.x - margin_px, person.y - margin_px, person.width + 2 * margin_px,
                   person.height + 2 * margin_px) &

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "tracker/mask_box.h"
 
 namespace simcap::tracker {
 
@@ -179,7 +180,7 @@ void VisualHull::carve(const std::vector<cv::Mat>& silhouettes, Occupancy& out) 
     cv::threshold(s, binary, 0, 255, cv::THRESH_BINARY);
     bytes[c][n] = 0;
     bytes[c][n + 1] = 255;
-    roi[c] = cv::boundingRect(binary);
+    roi[c] = mask_box(binary);
     if (!roi[c].empty()) cv::integral(binary(roi[c]), sums[c], CV_32S);
   });
 
