@@ -138,6 +138,10 @@ LoopRun loop_run_of(const LoopConfig& c, const fs::path& sweep_file, bool quiet)
       run.track.appearance = value;
     } else if (name == "filter") {
       run.track.filter = value;
+    } else if (name == "joints") {
+      run.track.joints = value;
+    } else if (name == "traversal") {
+      run.track.traversal = value;
     } else if (name == "voxel_m") {
       run.track.voxel_m = parse_option<double>(sweep_file, name, value);
     } else if (name == "sik_noise_m") {
@@ -147,7 +151,7 @@ LoopRun loop_run_of(const LoopConfig& c, const fs::path& sweep_file, bool quiet)
     } else {
       throw_input_error(sweep_file, 0, "track." + name,
                         "unknown tracker option; expected method, silhouettes, init, appearance, "
-                        "filter, voxel_m, sik_noise_m or seed");
+                        "filter, joints, traversal, voxel_m, sik_noise_m or seed");
     }
   }
   return run;

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <tuple>
@@ -76,6 +77,13 @@ int run_stress(const StressArgs& args) {
   print_table(spec, points, outcomes);
   std::printf("table: %s\nplot: %s\n", (args.out / "table.html").string().c_str(),
               (args.out / "mpjpe.svg").string().c_str());
+  // A point may fail as a measurement (too few cameras to track); a sweep that measured
+  // nothing is an error.
+  if (std::none_of(outcomes.begin(), outcomes.end(),
+                   [](const SweepOutcome& o) { return o.evaluation.has_value(); })) {
+    std::fprintf(stderr, "simcap stress: every point failed (see above)\n");
+    return 1;
+  }
   return 0;
 }
 
@@ -98,7 +106,8 @@ void add_stress(CLI::App& app, Action& action) {
   cmd->footer(
       "A sweep file names a base scene, frames and tracker options, and what to vary: scene keys\n"
       "(rig.count: [2, 3, 4]), the scene file, or tracker options (track.silhouettes). Points\n"
-      "that render the same scene share one rendered dataset.\n"
+      "that render the same scene share one rendered dataset. A point that fails is a row of the\n"
+      "table; the command exits 1 only when every point failed.\n"
       "Examples:\n"
       "  simcap stress stress/cameras.yaml -o out/stress-cameras\n"
       "  simcap stress stress/occlusion.yaml -o out/stress-occlusion\n"

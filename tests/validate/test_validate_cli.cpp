@@ -79,6 +79,14 @@ TEST(ValidateCli, BadSweepFileExitsOne) {
   EXPECT_EQ(run_simcap("stress " + quoted(dir / "sweep.yaml") + " -o " + quoted(dir / "out"), &out),
             1);
   EXPECT_NE(out.find("track.colour: unknown tracker option"), std::string::npos) << out;
+
+  // A known option reaches the tracker, which names the bad value.
+  write_text_atomic(dir / "sweep.yaml",
+                    "scene: " + (fs::path(SIMCAP_SOURCE_DIR) / "scenes" / "studio8.yaml").string() +
+                        "\nframes: 2\nvary: [{parameter: track.traversal, values: [sideways]}]\n");
+  EXPECT_EQ(run_simcap("stress " + quoted(dir / "sweep.yaml") + " -o " + quoted(dir / "out"), &out),
+            1);
+  EXPECT_NE(out.find("--traversal: unknown value 'sideways'"), std::string::npos) << out;
 }
 
 TEST(LoopCli, RendersTracksAndValidates) {
