@@ -13,6 +13,7 @@
 #include "core/joint_track.h"
 #include "core/progress.h"
 #include "models/humanoid.h"
+#include "tracker/auto_start.h"
 #include "tracker/dataset.h"
 #include "tracker/pose_init.h"
 #include "tracker/sik_track_job.h"
@@ -35,8 +36,8 @@ Eigen::AlignedBox3d working_volume(const Dataset& ds) {
   return {lo, hi};
 }
 
-// How many first frames --init auto measures the standing height on.
-constexpr int kHeightFrames = 5;
+// How many first frames --init auto measures the body on.
+constexpr int kStartFrames = 5;
 
 }  // namespace
 
@@ -101,36 +102,24 @@ TrackSummary run_moschini(const fs::path& dataset_path, const TrackOptions& opti
     tracker.emplace(dims, surface, topt);
     tracker->start(start);
   } else {
-    // Assumption: in the first frames the person stands upright on the floor; the hull's top is
-    // the head top, and the humanoid's proportions scaled to that height give the sticks.
-    std::vector<double> tops;
+    // Assumption: in the first frames the person stands upright on the floor (auto_start.h).
     std::vector<Observation> first;
-    for (int i = 0; i < std::min<int>(kHeightFrames, static_cast<int>(frames.size())); ++i) {
+    for (int i = 0; i < std::min<int>(kStartFrames, static_cast<int>(frames.size())); ++i) {
       first.push_back(perception.observe(frames[i]));
-      if (first.back().hull.count > 0) tops.push_back(upright_cue(first.back().hull, {}).top_y);
     }
-    if (tops.empty()) {
-      throw Error(dataset_path.string() + ": --init auto found no body in the first frames' hulls");
+    AutoStart start;
+    try {
+      start = auto_start(first, topt);
+    } catch (const Error& e) {
+      throw Error(dataset_path.string() + ": " + e.what());
     }
-    std::nth_element(tops.begin(), tops.begin() + tops.size() / 2, tops.end());
-    // The capsules need a pose: the first fit with typical ones, then the tracker restarts with
-    // the capsules fitted to it.
-    const BodyDimensions dims = dimensions_from_height(tops[tops.size() / 2]);
-    // The first fit searches at the final refinement's sampling: from upright hypotheses, with
-    // typical capsules, the coarse one finds the arms less often (studio4: 100.9 mm against
-    // 41.9).
-    TrackerOptions fopt = topt;
-    fopt.icp.refine.ray_every = topt.polish.ray_every;
-    fopt.icp.refine.rim_step_m = topt.polish.rim_step_m;
-    MoschiniTracker finder(dims, typical_surface(dims), fopt);
-    finder.start_upright(first.front());
-    const StickPose start = finder.step(first.front()).pose;
-    const BodySurface surface = fit_surface(finder.model(), start, typical_surface(dims),
+    // The capsules are fitted to the first pose; the tracker restarts with them.
+    const StickModel model(start.dims, topt.joints);
+    const BodySurface surface = fit_surface(model, start.pose, typical_surface(start.dims),
                                             first.front().rays, first.front().views);
-    if (popt.colours)
-      perception.set_appearance({finder.model(), surface, start, first.front().rays});
-    tracker.emplace(dims, surface, topt);
-    tracker->start(start);
+    if (popt.colours) perception.set_appearance({model, surface, start.pose, first.front().rays});
+    tracker.emplace(start.dims, surface, topt);
+    tracker->start(start.pose);
   }
 
   // Frames are observed in parallel; OpenCV's own worker threads inside each would only compete
