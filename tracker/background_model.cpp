@@ -1,6 +1,9 @@
 #include "tracker/background_model.h"
 
+#include <algorithm>
+#include <cmath>
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "core/error.h"
 
@@ -27,9 +30,25 @@ GaussianBackground::GaussianBackground(const std::vector<cv::Mat>& plates,
   const double floor = options.sigma_floor * options.sigma_floor;
   cv::max(var, floor, var);
   mean.convertTo(mean_, CV_32FC3);
-  cv::Mat inv;
-  cv::divide(1.0, var, inv);
-  inv.convertTo(inverse_var_, CV_32FC3);
+  var.convertTo(var_, CV_32FC3);
+}
+
+double GaussianBackground::frame_sigma(const cv::Mat& frame) const {
+  // Every 7th pixel of every 7th row and all three channels: enough for a median, and the step
+  // is prime to the usual image widths so that columns do not repeat.
+  std::vector<float> e;
+  e.reserve(static_cast<size_t>(frame.rows / 7 + 1) * (frame.cols / 7 + 1) * 3);
+  for (int r = 0; r < frame.rows; r += 7) {
+    const cv::Vec3b* x = frame.ptr<cv::Vec3b>(r);
+    const cv::Vec3f* mu = mean_.ptr<cv::Vec3f>(r);
+    for (int c = (r / 7) % 7; c < frame.cols; c += 7) {
+      for (int k = 0; k < 3; ++k) e.push_back(std::abs(x[c][k] - mu[c][k]));
+    }
+  }
+  if (e.empty()) return 0;
+  const auto mid = e.begin() + static_cast<std::ptrdiff_t>(e.size() / 2);
+  std::nth_element(e.begin(), mid, e.end());
+  return 1.4826 * *mid;
 }
 
 cv::Mat GaussianBackground::foreground(const cv::Mat& frame) const {
@@ -37,6 +56,8 @@ cv::Mat GaussianBackground::foreground(const cv::Mat& frame) const {
     throw Error("background model: frame must be an 8-bit colour image of the plate's size");
   }
   cv::Mat out(frame.size(), CV_8UC1);
+  const float noise = options_.frame_noise ? static_cast<float>(frame_sigma(frame)) : 0.0f;
+  const float noise2 = noise * noise;
   const float t2 = static_cast<float>(options_.threshold * options_.threshold);
   const float c2 = static_cast<float>(options_.shadow_chroma * options_.shadow_chroma);
   const float lo = static_cast<float>(options_.shadow_min_ratio);
@@ -45,13 +66,15 @@ cv::Mat GaussianBackground::foreground(const cv::Mat& frame) const {
     for (int r = rows.start; r < rows.end; ++r) {
       const cv::Vec3b* x = frame.ptr<cv::Vec3b>(r);
       const cv::Vec3f* mu = mean_.ptr<cv::Vec3f>(r);
-      const cv::Vec3f* iv = inverse_var_.ptr<cv::Vec3f>(r);
+      const cv::Vec3f* var = var_.ptr<cv::Vec3f>(r);
       std::uint8_t* o = out.ptr<std::uint8_t>(r);
       for (int c = 0; c < frame.cols; ++c) {
+        const cv::Vec3f iv(1 / std::max(var[c][0], noise2), 1 / std::max(var[c][1], noise2),
+                           1 / std::max(var[c][2], noise2));
         float d2 = 0, xm = 0, mm = 0;
         for (int k = 0; k < 3; ++k) {
           const float e = x[c][k] - mu[c][k];
-          d2 += e * e * iv[c][k];
+          d2 += e * e * iv[k];
           xm += x[c][k] * mu[c][k];
           mm += mu[c][k] * mu[c][k];
         }
@@ -62,7 +85,7 @@ cv::Mat GaussianBackground::foreground(const cv::Mat& frame) const {
             float cd2 = 0;
             for (int k = 0; k < 3; ++k) {
               const float e = x[c][k] - alpha * mu[c][k];
-              cd2 += e * e * iv[c][k];
+              cd2 += e * e * iv[k];
             }
             fg = cd2 > c2;
           }

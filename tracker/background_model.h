@@ -11,6 +11,10 @@ struct BackgroundOptions {
   // Variance floor in 8-bit levels: one empty plate gives zero variance, and a rendered or
   // real camera still has a few levels of noise and compression error.
   double sigma_floor = 4.0;
+  // Each frame's own noise also floors the variance: 1.4826 times the median absolute
+  // difference from the background mean over a sample of its pixels (most of which are
+  // background), so that a noisier sensor than the plates show is not all foreground.
+  bool frame_noise = true;
   // "Risk value" of §6.3 as a Mahalanobis distance: foreground when the colour lies more than
   // this many standard deviations (summed over channels) from the background mean. A fixed
   // pdf value would make noisy pixels foreground more easily; the distance does not.
@@ -30,11 +34,13 @@ class GaussianBackground {
   GaussianBackground(const std::vector<cv::Mat>& plates, const BackgroundOptions& options = {});
   // CV_8UC1, 255 = foreground. Thread-safe.
   cv::Mat foreground(const cv::Mat& frame) const;
+  // The frame's noise in 8-bit levels (see BackgroundOptions::frame_noise).
+  double frame_sigma(const cv::Mat& frame) const;
 
  private:
   BackgroundOptions options_;
-  cv::Mat mean_;         // CV_32FC3
-  cv::Mat inverse_var_;  // CV_32FC3
+  cv::Mat mean_;  // CV_32FC3
+  cv::Mat var_;   // CV_32FC3, floored at sigma_floor²
 };
 
 }  // namespace simcap::tracker

@@ -41,6 +41,7 @@ void MoschiniTracker::start(const StickPose& pose) {
   filter_.reset(pose);
   started_ = true;
   lost_streak_ = 0;
+  patience_ = options_.recovery.lost_frames;
 }
 
 double MoschiniTracker::outside_fraction(const StickPose& pose, const Occupancy& hull) const {
@@ -219,8 +220,10 @@ TrackStep MoschiniTracker::step(const Observation& obs) {
                     out.outside_fraction * 100);
     }
     lost_streak_ = why[0] ? lost_streak_ + 1 : 0;
-    if (lost_streak_ >= rec.lost_frames) {
+    if (!why[0]) patience_ = rec.lost_frames;
+    if (lost_streak_ >= patience_) {
       lost_streak_ = 0;
+      patience_ = std::min(2 * patience_, rec.max_lost_frames);
       const StickPose found = best_upright(obs, &measured);
       if (found.t0 != measured.t0 || found.R0 != measured.R0 || found.theta != measured.theta) {
         out.reinitialized = true;

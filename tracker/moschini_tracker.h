@@ -21,6 +21,10 @@ struct RecoveryOptions {
   double lost_distance_m = 0.05;
   double lost_outside_fraction = 0.25;
   int lost_frames = 3;
+  // Each search makes the next wait twice as many lost frames in a row, up to this many, until a
+  // frame is tracked again: a search costs about a second, and on silhouettes too noisy to track
+  // one every three frames would make the tracker a hundred times slower for nothing.
+  int max_lost_frames = 48;
   int headings = 12;  // upright hypotheses around the circle
   int searched = 4;   // of them, the best fits whose limbs are searched (search_limbs)
   // A recovered pose replaces the current fit only when it costs less than this fraction of
@@ -114,6 +118,7 @@ class MoschiniTracker {
   StickPose pose_;
   bool started_ = false;
   int lost_streak_ = 0;
+  int patience_ = 0;  // lost frames in a row that start a recovery search now
   int reinitializations_ = 0;
 };
 

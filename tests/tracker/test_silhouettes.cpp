@@ -52,6 +52,30 @@ TEST(GaussianBackground, FindsTheForegroundAndIgnoresShadows) {
   EXPECT_LT(silhouette_iou(with_shadow, truth), 0.7);  // the shadow is taken for the person
 }
 
+// One clean plate, then a frame from a noisier sensor (12 levels): the frame's own noise floors
+// the variance, so the background stays background; with the plate's floor alone it does not.
+TEST(GaussianBackground, MeasuresTheFramesOwnNoise) {
+  cv::RNG rng(2);
+  const int rows = 120, cols = 160;
+  const std::vector<cv::Mat> plates = {plate(rng, rows, cols)};
+  cv::Mat frame = plate(rng, rows, cols);
+  cv::rectangle(frame, cv::Rect(40, 20, 30, 70), cv::Scalar(40, 60, 170), cv::FILLED);
+  cv::Mat noise(rows, cols, CV_16SC3);
+  rng.fill(noise, cv::RNG::NORMAL, 0, 12);
+  cv::Mat noisy;
+  frame.convertTo(noisy, CV_16SC3);
+  noisy += noise;
+  noisy.convertTo(noisy, CV_8UC3);
+  cv::Mat truth(rows, cols, CV_8UC1, cv::Scalar(0));
+  cv::rectangle(truth, cv::Rect(40, 20, 30, 70), cv::Scalar(255), cv::FILLED);
+  const GaussianBackground model(plates);
+  EXPECT_NEAR(model.frame_sigma(noisy), 12.0, 2.0);
+  EXPECT_GT(silhouette_iou(model.foreground(noisy), truth), 0.9);
+  BackgroundOptions plate_floor;
+  plate_floor.frame_noise = false;
+  EXPECT_LT(silhouette_iou(GaussianBackground(plates, plate_floor).foreground(noisy), truth), 0.5);
+}
+
 TEST(GaussianBackground, RejectsMismatchedImages) {
   EXPECT_THROW(GaussianBackground(std::vector<cv::Mat>{}), Error);
   const cv::Mat p(10, 10, CV_8UC3, cv::Scalar(1, 2, 3));
