@@ -45,7 +45,7 @@ struct PointJacobian {
   static constexpr int kMax = 15;
   std::array<int, kMax> index{};  // parameter of each column
   int n = 0;
-  Eigen::Matrix<double, 3, kMax> J = Eigen::Matrix<double, 3, kMax>::Zero();
+  Eigen::Matrix<double, 3, kMax> J;  // only the first n columns are set and read
 };
 
 // Accumulates weighted residuals into the normal equations and the cost.
@@ -268,7 +268,7 @@ double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
     if (!free_tip) {
       const Eigen::Vector3d u = ab.normalized();
       const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - u * u.transpose();
-      j.J = P * j.J;
+      j.J.leftCols(j.n) = (P * j.J.leftCols(j.n)).eval();
       r = P * r;
     }
     normal.add(j, r, wp2);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 
 #include "tracker/body_surface.h"
 #include "tracker/silhouette_view.h"
@@ -45,8 +46,10 @@ void for_each_rim_point(const SilhouetteView& view, const PlacedSurface& surface
         const Eigen::Vector3d pc = cam.to_camera(rim.point);
         if (pc.z() <= 0) continue;
         const Eigen::Vector2d px = cam.project_camera(pc);
-        const int u = static_cast<int>(std::lround(px.x())),
-                  v = static_cast<int>(std::lround(px.y()));
+        // Nearest pixel; std::lround is a library call, and this loop runs a thousand times per
+        // evaluation.
+        const int u = static_cast<int>(std::floor(px.x() + 0.5)),
+                  v = static_cast<int>(std::floor(px.y() + 0.5));
         if (u < 0 || v < 0 || u >= cam.width || v >= cam.height) continue;
         rim.outside = !view.inside(u, v);
         if (rim.outside) {
