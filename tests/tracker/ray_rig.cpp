@@ -6,6 +6,8 @@
 #include <numbers>
 
 #include "core/camera.h"
+#include "tracker/skeletonize.h"
+#include "tracker/visual_hull.h"
 
 namespace simcap::testing {
 
@@ -103,6 +105,22 @@ std::vector<cv::Mat> silhouette_masks(const StickModel& model, const BodySurface
     masks.push_back(mask);
   }
   return masks;
+}
+
+RigObservation observe_rig(const StickModel& model, const BodySurface& surface,
+                           const StickPose& pose, const std::vector<double>& azimuths,
+                           const Eigen::AlignedBox3d& volume) {
+  RigObservation rig;
+  for (const double a : azimuths) rig.cameras.push_back(ring_camera(pose, a));
+  const std::vector<cv::Mat> masks = silhouette_masks(model, surface, pose, azimuths);
+  Observation& obs = rig.observation;
+  HullOptions hull;
+  hull.volume = volume;
+  VisualHull(rig.cameras, hull).carve(masks, obs.hull);
+  for (const CenterlinePoint& p : centerline(obs.hull, {})) obs.points.push_back(p.position);
+  obs.rays = silhouette_rays(model, surface, pose, 4, nullptr, nullptr, azimuths);
+  for (size_t c = 0; c < rig.cameras.size(); ++c) obs.views.emplace_back(rig.cameras[c], masks[c]);
+  return rig;
 }
 
 std::vector<SilhouetteRay> silhouette_rays(const StickModel& model, const BodySurface& surface,

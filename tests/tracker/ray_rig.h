@@ -11,6 +11,7 @@
 #include "core/camera.h"
 #include "tracker/body_surface.h"
 #include "tracker/icp_targets.h"
+#include "tracker/perception.h"
 #include "tracker/stick_model.h"
 
 namespace simcap::testing {
@@ -36,6 +37,17 @@ std::vector<cv::Mat> silhouette_masks(const tracker::StickModel& model,
                                       const tracker::BodySurface& surface,
                                       const tracker::StickPose& pose,
                                       const std::vector<double>& azimuths = camera_ring());
+
+// What the tracker observes of the capsules on `pose` from the ring cameras at `azimuths`: the
+// hull carved in `volume` (2 cm voxels), its centerline, rays on a 4-pixel grid, the silhouette
+// views. The views point at `cameras`: keep the whole rig alive while `observation` is in use.
+struct RigObservation {
+  std::vector<Camera> cameras;
+  tracker::Observation observation;
+};
+RigObservation observe_rig(const tracker::StickModel& model, const tracker::BodySurface& surface,
+                           const tracker::StickPose& pose, const std::vector<double>& azimuths,
+                           const Eigen::AlignedBox3d& volume);
 
 // Distance from x to the segment [a, b].
 double segment_distance(const Eigen::Vector3d& x, const Eigen::Vector3d& a,

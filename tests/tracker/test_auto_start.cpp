@@ -4,8 +4,6 @@
 #include "tests/tracker/ray_rig.h"
 #include "tracker/auto_start.h"
 #include "tracker/pose_init.h"
-#include "tracker/skeletonize.h"
-#include "tracker/visual_hull.h"
 
 namespace simcap::tracker {
 namespace {
@@ -24,18 +22,10 @@ TEST(AutoStart, MeasuresTheShouldersHeight) {
   pose.theta[kLShoulder1] = 0.15;
   pose.theta[kRShoulder1] = -0.15;
   pose.theta[kLElbow] = pose.theta[kRElbow] = -0.3;
-  const std::vector<double> azimuths = testing::camera_ring(4);
-  std::vector<Camera> cams;
-  for (const double a : azimuths) cams.push_back(testing::ring_camera(pose, a));
-  const std::vector<cv::Mat> masks = testing::silhouette_masks(model, surface, pose, azimuths);
-  Observation obs;
-  HullOptions hull;
-  hull.volume =
-      Eigen::AlignedBox3d(Eigen::Vector3d(-1.0, 0.0, -1.3), Eigen::Vector3d(1.4, 2.1, 1.1));
-  VisualHull(cams, hull).carve(masks, obs.hull);
-  for (const CenterlinePoint& p : centerline(obs.hull, {})) obs.points.push_back(p.position);
-  obs.rays = testing::silhouette_rays(model, surface, pose, 4);
-  for (size_t c = 0; c < cams.size(); ++c) obs.views.emplace_back(cams[c], masks[c]);
+  const testing::RigObservation rig = testing::observe_rig(
+      model, surface, pose, testing::camera_ring(6),
+      Eigen::AlignedBox3d(Eigen::Vector3d(-1.0, 0.0, -1.3), Eigen::Vector3d(1.4, 2.1, 1.1)));
+  const Observation& obs = rig.observation;
   ASSERT_GT(obs.hull.count, 1000);
 
   TrackerOptions options;

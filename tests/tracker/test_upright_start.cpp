@@ -6,8 +6,6 @@
 #include "tests/tracker/ray_rig.h"
 #include "tests/tracker/refine_test_support.h"
 #include "tracker/moschini_tracker.h"
-#include "tracker/skeletonize.h"
-#include "tracker/visual_hull.h"
 
 namespace simcap::tracker {
 namespace {
@@ -36,18 +34,11 @@ TEST(MoschiniTracker, UprightStartFindsAnArmAcrossTheBody) {
   const StickModel model(dims, JointSet::urdf);
   const StickPose truth = arm_across_in_stride();
   // Four cameras: with six, the fit finds the arm without the limbs' search.
-  const std::vector<double> azimuths = testing::camera_ring(4);
-  std::vector<Camera> cams;
-  for (const double a : azimuths) cams.push_back(testing::ring_camera(truth, a));
-  const std::vector<cv::Mat> masks = testing::silhouette_masks(model, surface, truth, azimuths);
-  Observation obs;
-  HullOptions hull;
-  hull.volume = Eigen::AlignedBox3d(truth.t0 - Eigen::Vector3d(1.2, 1.05, 1.2),
-                                    truth.t0 + Eigen::Vector3d(1.2, 1.0, 1.2));
-  VisualHull(cams, hull).carve(masks, obs.hull);
-  for (const CenterlinePoint& p : centerline(obs.hull, {})) obs.points.push_back(p.position);
-  obs.rays = testing::silhouette_rays(model, surface, truth, 4);
-  for (size_t c = 0; c < cams.size(); ++c) obs.views.emplace_back(cams[c], masks[c]);
+  const testing::RigObservation rig =
+      testing::observe_rig(model, surface, truth, testing::camera_ring(4),
+                           Eigen::AlignedBox3d(truth.t0 - Eigen::Vector3d(1.2, 1.05, 1.2),
+                                               truth.t0 + Eigen::Vector3d(1.2, 1.0, 1.2)));
+  const Observation& obs = rig.observation;
   ASSERT_GT(obs.points.size(), 50u);
 
   TrackerOptions options;
