@@ -81,11 +81,7 @@ class Normal {
     for (int a = 0; a < j.n; ++a) {
       const auto ja = j.J.col(a);
       (*rhs_)(j.index[a]) += w2 * ja.dot(r);
-      for (int b = a; b < j.n; ++b) {
-        const double v = w2 * ja.dot(j.J.col(b));
-        (*H_)(j.index[a], j.index[b]) += v;
-        if (b != a) (*H_)(j.index[b], j.index[a]) += v;
-      }
+      for (int b = a; b < j.n; ++b) (*H_)(j.index[a], j.index[b]) += w2 * ja.dot(j.J.col(b));
     }
   }
   // A scalar residual e (minimized towards 0) whose gradient is n^T times the Jacobian j.
@@ -97,11 +93,7 @@ class Normal {
     for (int a = 0; a < j.n; ++a) g[a] = j.J.col(a).dot(n);
     for (int a = 0; a < j.n; ++a) {
       (*rhs_)(j.index[a]) -= w2 * e * g[a];
-      for (int b = a; b < j.n; ++b) {
-        const double v = w2 * g[a] * g[b];
-        (*H_)(j.index[a], j.index[b]) += v;
-        if (b != a) (*H_)(j.index[b], j.index[a]) += v;
-      }
+      for (int b = a; b < j.n; ++b) (*H_)(j.index[a], j.index[b]) += w2 * g[a] * g[b];
     }
   }
   // A scalar residual e on one parameter with slope `slope`.
@@ -120,6 +112,13 @@ class Normal {
     count_ += n;
   }
   double cost() const { return count_ ? cost_ / count_ : 0.0; }
+  // The residuals fill H's upper triangle only (a point's columns are in ascending parameter
+  // order); this mirrors it.
+  void symmetrize() {
+    if (!H_) return;
+    for (int b = 0; b < H_->cols(); ++b)
+      for (int a = b + 1; a < H_->rows(); ++a) (*H_)(a, b) = (*H_)(b, a);
+  }
 
  private:
   const StickGeometry& g_;
@@ -150,7 +149,10 @@ void add_rim(const SilhouetteView& view, const PlacedSurface& surface, const Ref
 PoseRefiner::PoseRefiner(const StickModel& model, const BodySurface& surface,
                          const RefineOptions& options)
     : model_(&model), surface_(surface), options_(options) {
-  for (int s = 0; s < kSegmentCount; ++s) chains_[s] = model.chain_angles(s);
+  for (int s = 0; s < kSegmentCount; ++s) {
+    chains_[s] = model.chain_angles(s);
+    std::sort(chains_[s].begin(), chains_[s].end());
+  }
 }
 
 // Which stick each residual belongs to, decided once per iteration (as ICP fixes its closest
@@ -319,6 +321,7 @@ double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
       normal.add_parameter(3 + i, slope, slope * rot(i));
     }
   }
+  normal.symmetrize();
   return normal.cost();
 }
 
