@@ -152,6 +152,31 @@ VisualHull::VisualHull(std::vector<Camera> cameras, const HullOptions& options)
       }
     }
   });
+
+  // A group's box per camera is the union of its live blocks' (no veto when one has none).
+  groups_ = (blocks_.array() + kGroup - 1) / kGroup;
+  const int ngroups = groups_.prod();
+  group_live_.assign(ngroups, 0);
+  group_boxes_.assign(nc, std::vector<PixelBox>(ngroups, PixelBox{1, 0, 0, 0}));
+  for (int b = 0; b < nblocks; ++b) {
+    if (!block_live_[b]) continue;
+    const int bx = b % blocks_.x(), bz = (b / blocks_.x()) % blocks_.z();
+    const int by = b / (blocks_.x() * blocks_.z());
+    const int g = (by / kGroup * groups_.z() + bz / kGroup) * groups_.x() + bx / kGroup;
+    const bool first = !group_live_[g];
+    group_live_[g] = 1;
+    for (int c = 0; c < nc; ++c) {
+      PixelBox& u = group_boxes_[c][g];
+      const PixelBox& k = boxes_[c][b];
+      if (first) {
+        u = k;
+      } else if (u.u0 <= u.u1) {
+        u = k.u0 > k.u1 ? k
+                        : PixelBox{std::min(u.u0, k.u0), std::min(u.v0, k.v0), std::max(u.u1, k.u1),
+                                   std::max(u.v1, k.v1)};
+      }
+    }
+  }
 }
 
 void VisualHull::carve(const std::vector<cv::Mat>& silhouettes, Occupancy& out) const {
@@ -184,43 +209,52 @@ void VisualHull::carve(const std::vector<cv::Mat>& silhouettes, Occupancy& out) 
     if (!roi[c].empty()) cv::integral(binary(roi[c]), sums[c], CV_32S);
   });
 
+  // Whether some pixel of every constraining camera's box is in its silhouette.
+  auto passes = [&](const std::vector<std::vector<PixelBox>>& boxes, int i) {
+    for (int c = 0; c < nc; ++c) {
+      const PixelBox& box = boxes[c][i];
+      if (box.u0 > box.u1) continue;
+      const cv::Rect& q = roi[c];
+      const int u0 = std::max<int>(box.u0, q.x) - q.x,
+                u1 = std::min<int>(box.u1, q.x + q.width - 1) - q.x;
+      const int v0 = std::max<int>(box.v0, q.y) - q.y,
+                v1 = std::min<int>(box.v1, q.y + q.height - 1) - q.y;
+      if (u0 > u1 || v0 > v1) return false;
+      const cv::Mat& S = sums[c];
+      const int inside = S.at<int>(v1 + 1, u1 + 1) - S.at<int>(v0, u1 + 1) - S.at<int>(v1 + 1, u0) +
+                         S.at<int>(v0, u0);
+      if (inside == 0) return false;
+    }
+    return true;
+  };
   const int nblocks = blocks_.x() * blocks_.y() * blocks_.z();
   std::vector<std::uint64_t> bits(nblocks, 0);
-  tbb::parallel_for(tbb::blocked_range<int>(0, nblocks, 512),
-                    [&](const tbb::blocked_range<int>& r) {
-                      std::vector<const std::uint32_t*> lut(nc);
-                      for (int b = r.begin(); b != r.end(); ++b) {
-                        if (!block_live_[b]) continue;
-                        bool pass = true;
-                        for (int c = 0; c < nc && pass; ++c) {
-                          const PixelBox& box = boxes_[c][b];
-                          if (box.u0 > box.u1) continue;
-                          const cv::Rect& q = roi[c];
-                          const int u0 = std::max<int>(box.u0, q.x) - q.x,
-                                    u1 = std::min<int>(box.u1, q.x + q.width - 1) - q.x;
-                          const int v0 = std::max<int>(box.v0, q.y) - q.y,
-                                    v1 = std::min<int>(box.v1, q.y + q.height - 1) - q.y;
-                          if (u0 > u1 || v0 > v1) {
-                            pass = false;
-                            break;
-                          }
-                          const cv::Mat& S = sums[c];
-                          const int inside = S.at<int>(v1 + 1, u1 + 1) - S.at<int>(v0, u1 + 1) -
-                                             S.at<int>(v1 + 1, u0) + S.at<int>(v0, u0);
-                          pass = inside > 0;
-                        }
-                        if (!pass) continue;
-                        for (int c = 0; c < nc; ++c)
-                          lut[c] = lut_[c].data() + static_cast<size_t>(b) * kBlockVoxels;
-                        std::uint64_t m = 0;
-                        for (int k = 0; k < kBlockVoxels; ++k) {
-                          std::uint8_t v = 255;
-                          for (int c = 0; c < nc; ++c) v &= bytes[c][lut[c][k]];
-                          if (v) m |= std::uint64_t{1} << k;
-                        }
-                        bits[b] = m;
-                      }
-                    });
+  tbb::parallel_for(
+      tbb::blocked_range<int>(0, groups_.prod(), 8), [&](const tbb::blocked_range<int>& r) {
+        std::vector<const std::uint32_t*> lut(nc);
+        for (int g = r.begin(); g != r.end(); ++g) {
+          if (!group_live_[g] || !passes(group_boxes_, g)) continue;
+          const int gx = g % groups_.x(), gz = (g / groups_.x()) % groups_.z();
+          const int gy = g / (groups_.x() * groups_.z());
+          for (int by = gy * kGroup; by < std::min((gy + 1) * kGroup, blocks_.y()); ++by) {
+            for (int bz = gz * kGroup; bz < std::min((gz + 1) * kGroup, blocks_.z()); ++bz) {
+              for (int bx = gx * kGroup; bx < std::min((gx + 1) * kGroup, blocks_.x()); ++bx) {
+                const int b = (by * blocks_.z() + bz) * blocks_.x() + bx;
+                if (!block_live_[b] || !passes(boxes_, b)) continue;
+                for (int c = 0; c < nc; ++c)
+                  lut[c] = lut_[c].data() + static_cast<size_t>(b) * kBlockVoxels;
+                std::uint64_t m = 0;
+                for (int k = 0; k < kBlockVoxels; ++k) {
+                  std::uint8_t v = 255;
+                  for (int c = 0; c < nc; ++c) v &= bytes[c][lut[c][k]];
+                  if (v) m |= std::uint64_t{1} << k;
+                }
+                bits[b] = m;
+              }
+            }
+          }
+        }
+      });
 
   auto voxel_of = [&](int b, int k) {
     const int bx = b % blocks_.x();

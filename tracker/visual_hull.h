@@ -55,21 +55,25 @@ class VisualHull {
   void carve(const std::vector<cv::Mat>& silhouettes, Occupancy& out) const;
 
  private:
-  // Blocks of 4x4x4 voxels are tested first against each camera's silhouette with a summed
-  // area table over the pixel box they project to; only blocks that survive every camera are
-  // tested voxel by voxel.
+  // Groups of 4x4x4 blocks, then blocks of 4x4x4 voxels, are tested first against each
+  // camera's silhouette with a summed area table over the pixel box they project to; only
+  // blocks that survive every camera are tested voxel by voxel.
   static constexpr int kBlock = 4;
   static constexpr int kBlockVoxels = kBlock * kBlock * kBlock;
+  static constexpr int kGroup = 4;  // blocks per group along each axis
   struct PixelBox {
     std::int16_t u0, v0, u1, v1;  // inclusive; u0 > u1 when the camera does not constrain
   };
   std::vector<Camera> cameras_;
   VoxelGrid grid_;
   Eigen::Vector3i blocks_ = Eigen::Vector3i::Zero();
+  Eigen::Vector3i groups_ = Eigen::Vector3i::Zero();
   int min_views_ = 0;
-  std::vector<std::uint8_t> block_live_;         // some voxel of the block has enough views
-  std::vector<std::vector<std::uint32_t>> lut_;  // per camera, per voxel (block-major)
-  std::vector<std::vector<PixelBox>> boxes_;     // per camera, per block
+  std::vector<std::uint8_t> block_live_;            // some voxel of the block has enough views
+  std::vector<std::uint8_t> group_live_;            // some block of the group is live
+  std::vector<std::vector<std::uint32_t>> lut_;     // per camera, per voxel (block-major)
+  std::vector<std::vector<PixelBox>> boxes_;        // per camera, per block
+  std::vector<std::vector<PixelBox>> group_boxes_;  // per camera, per group (union of its blocks')
 };
 
 }  // namespace simcap::tracker
