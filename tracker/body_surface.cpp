@@ -76,21 +76,6 @@ BodySurface typical_surface(const BodyDimensions& d) {
   return s;
 }
 
-double PlacedCapsule::along(const Eigen::Vector3d& x) const {
-  const double len2 = ab.squaredNorm();
-  return len2 > 0 ? std::clamp((x - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-}
-
-bool PlacedCapsule::distance(const Eigen::Vector3d& x, double* d, Eigen::Vector3d* normal) const {
-  const double t = along(x);
-  const Eigen::Vector3d r = x - a - t * ab;
-  const double n = r.norm();
-  if (n < 1e-9) return false;
-  *d = n - radius(t);
-  *normal = r / n;
-  return true;
-}
-
 PlacedSurface place(const BodySurface& surface, const StickGeometry& g) {
   PlacedSurface out;
   for (int c = 0; c < kCapsuleCount; ++c) {

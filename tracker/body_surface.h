@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <string_view>
 
@@ -53,11 +54,23 @@ struct PlacedCapsule {
 
   double radius(double t) const { return ra + t * dr; }
   // The axis parameter in [0, 1] of the axis point nearest to x.
-  double along(const Eigen::Vector3d& x) const;
+  double along(const Eigen::Vector3d& x) const {
+    const double len2 = ab.squaredNorm();
+    return len2 > 0 ? std::clamp((x - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  }
   // Signed distance from x to the surface (negative inside) and the outward direction from the
   // axis there; false on the axis, where that direction is undefined. Exact for equal radii; for
-  // a taper it measures across the axis, which is close for the gentle tapers of limbs.
-  bool distance(const Eigen::Vector3d& x, double* d, Eigen::Vector3d* normal) const;
+  // a taper it measures across the axis, which is close for the gentle tapers of limbs. (Inline:
+  // the fitting calls it for every ray and capsule it tries.)
+  bool distance(const Eigen::Vector3d& x, double* d, Eigen::Vector3d* normal) const {
+    const double t = along(x);
+    const Eigen::Vector3d r = x - a - t * ab;
+    const double n = r.norm();
+    if (n < 1e-9) return false;
+    *d = n - radius(t);
+    *normal = r / n;
+    return true;
+  }
 };
 using PlacedSurface = std::array<PlacedCapsule, kCapsuleCount>;
 

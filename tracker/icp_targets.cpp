@@ -51,21 +51,4 @@ double x84_threshold(std::vector<double> distances, double k, double floor) {
   return std::max(floor, med + k * 1.4826 * mad);
 }
 
-// Alternating clamped projections: exact unless the ray starts within the segment's reach, which
-// a camera's centre never does.
-Eigen::Vector3d nearest_on_ray(const SilhouetteRay& ray, const Eigen::Vector3d& a,
-                               const Eigen::Vector3d& b) {
-  const Eigen::Vector3d ab = b - a;
-  const Eigen::Vector3d& u = ray.direction;
-  const Eigen::Vector3d w = ray.origin - a;
-  const double aa = ab.squaredNorm(), au = ab.dot(u), aw = ab.dot(w), uw = u.dot(w);
-  const double den = aa - au * au;
-  const double t_lines = den > 1e-12 ? std::clamp((aw - au * uw) / den, 0.0, 1.0) : 0.0;
-  auto on_ray = [&](double t) {
-    return ray.origin + std::max(0.0, (a + t * ab - ray.origin).dot(u)) * u;
-  };
-  const double t = std::clamp((on_ray(t_lines) - a).dot(ab) / aa, 0.0, 1.0);
-  return on_ray(t);
-}
-
 }  // namespace simcap::tracker

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -56,9 +57,23 @@ struct ClosestStick {
 };
 ClosestStick closest_stick(const StickGeometry& g, const Eigen::Vector3d& x);
 
-// The point of `ray` nearest to the segment [a, b].
-Eigen::Vector3d nearest_on_ray(const SilhouetteRay& ray, const Eigen::Vector3d& a,
-                               const Eigen::Vector3d& b);
+// The point of `ray` nearest to the segment [a, b], by alternating clamped projections: exact
+// unless the ray starts within the segment's reach, which a camera's centre never does. (Inline:
+// the fitting calls it for every ray and capsule it tries.)
+inline Eigen::Vector3d nearest_on_ray(const SilhouetteRay& ray, const Eigen::Vector3d& a,
+                                      const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const Eigen::Vector3d& u = ray.direction;
+  const Eigen::Vector3d w = ray.origin - a;
+  const double aa = ab.squaredNorm(), au = ab.dot(u), aw = ab.dot(w), uw = u.dot(w);
+  const double den = aa - au * au;
+  const double t_lines = den > 1e-12 ? std::clamp((aw - au * uw) / den, 0.0, 1.0) : 0.0;
+  auto on_ray = [&](double t) {
+    return ray.origin + std::max(0.0, (a + t * ab - ray.origin).dot(u)) * u;
+  };
+  const double t = std::clamp((on_ray(t_lines) - a).dot(ab) / aa, 0.0, 1.0);
+  return on_ray(t);
+}
 
 // The X84 threshold on distances: med + k · 1.4826 · med|e - med|, but never below `floor`:
 // near convergence on clean data the MAD shrinks towards 0 and X84 would reject the very points

@@ -109,7 +109,8 @@ class SurfaceProblem {
       for (int c = 0; c < kCapsuleCount; ++c) {
         const PlacedCapsule& capsule = placed[c];
         const Eigen::Vector3d q = nearest_on_ray(ray, capsule.a, capsule.a + capsule.ab);
-        Eigen::Vector3d n;
+        // On the axis the outward direction is undefined and the miss has no slope.
+        Eigen::Vector3d n = Eigen::Vector3d::Zero();
         if (!capsule.distance(q, &miss[c], &n)) miss[c] = -capsule.radius(capsule.along(q));
         // The surface point nearest the ray moves with the capsule; only its normal part counts.
         slope[c] = n.transpose() * point_jacobian(c, capsule.along(q), n);
