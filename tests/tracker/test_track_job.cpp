@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <iterator>
 #include <opencv2/core.hpp>
 #include <sstream>
 
@@ -198,6 +199,27 @@ TEST(TrackJob, BadDatasetsGiveClearErrors) {
   EXPECT_NE(run_simcap("track " + dataset().string() + out + " --appearance maybe", &log), 0);
   EXPECT_NE(run_simcap("track " + dataset().string() + out + " --filter kalman", &log), 0);
   EXPECT_NE(run_simcap("track " + dataset().string() + out + " --traversal sometimes", &log), 0);
+}
+
+// The acceptance line of the speed goal: per-stage rows, every run's rate and the median last.
+TEST(BenchTrack, ReportsStagesRunsAndTheMedianRate) {
+  std::string log;
+  ASSERT_EQ(run_simcap("bench track " + dataset().string() + " --frames 4 --repeat 2", &log), 0)
+      << log;
+  for (const char* row : {"silhouettes (decode)", "visual hull", "centerline", "articulated ICP"})
+    EXPECT_NE(log.find(row), std::string::npos) << row << "\n" << log;
+  EXPECT_NE(log.find("EKF                           off"), std::string::npos) << log;
+  const size_t runs = log.find("frames/s per run:");
+  ASSERT_NE(runs, std::string::npos) << log;
+  std::istringstream rates(log.substr(runs + 17, log.find('\n', runs) - runs - 17));
+  std::vector<double> fps{std::istream_iterator<double>(rates), std::istream_iterator<double>()};
+  ASSERT_EQ(fps.size(), 2u) << log;
+  const size_t last = log.rfind("frames_per_s=");
+  ASSERT_NE(last, std::string::npos) << log;
+  EXPECT_EQ(log.find('\n', last), log.size() - 1) << "frames_per_s must be the last line";
+  EXPECT_NEAR(std::stod(log.substr(last + 13)), 0.5 * (fps[0] + fps[1]),
+              0.11);  // each printed to 0.1
+  EXPECT_NE(run_simcap("bench track " + dataset().string() + " --repeat 0", &log), 0);
 }
 
 }  // namespace
