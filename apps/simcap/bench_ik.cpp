@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "apps/simcap/bench_commands.h"
+#include "apps/simcap/number_checks.h"
 #include "models/humanoid.h"
 #include "models/motion_source.h"
 #include "tracker/ik_eval.h"
@@ -75,7 +76,7 @@ void add_bench_ik(CLI::App& bench, Action& action) {
                   "BVH clip (default: a 10 s procedural walk on the canonical humanoid)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--repeat", args.repeat, "Runs per method; the median is reported")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   cmd->footer(
       "Examples:\n"

@@ -2,6 +2,7 @@
 #include <filesystem>
 
 #include "apps/simcap/bench_commands.h"
+#include "apps/simcap/number_checks.h"
 #include "scenes/scene.h"
 #include "sim/render_benchmark.h"
 
@@ -51,11 +52,11 @@ void add_bench_render(CLI::App& bench, Action& action) {
   cmd->add_option("scene", args.scene, "Scene file (default: the shipped scenes/studio4.yaml)");
   cmd->add_option("--frames", args.options.frames, "Frames of the full render")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--ray-frames", args.options.ray_frames,
                   "Frames (spread over those) for the ray-rate measurements")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--set", args.options.overrides, "Scene override key.path=value, repeatable");
   cmd->add_flag("-q,--quiet", args.options.quiet, "No progress on stderr");
   cmd->footer(

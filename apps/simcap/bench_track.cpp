@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "apps/simcap/bench_commands.h"
+#include "apps/simcap/number_checks.h"
 #include "tracker/dataset.h"
 #include "tracker/track_job.h"
 
@@ -103,7 +104,8 @@ void add_bench_track(CLI::App& bench, Action& action) {
   cmd->add_option("DATASET", o->dataset, "Dataset folder written by simcap render")
       ->required()
       ->check(CLI::ExistingDirectory);
-  cmd->add_option("--frames", o->frames, "Frames to track (default: all)");
+  cmd->add_option("--frames", o->frames, "Frames to track (default: all)")
+      ->check(positive_number());
   cmd->add_option("--repeat", o->repeat, "Runs; frames_per_s is their median")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();

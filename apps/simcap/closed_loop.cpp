@@ -1,4 +1,5 @@
 #include "apps/simcap/closed_loop.h"
+#include "apps/simcap/number_checks.h"
 
 #include <charconv>
 #include <chrono>
@@ -108,7 +109,7 @@ void add_loop_options(CLI::App* cmd, LoopRun& run, LoopCliOptions& cli) {
       ->capture_default_str();
   cmd->add_option("--voxel", run.track.voxel_m, "Visual hull voxel size, metres")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   add_scoring_options(cmd, run.validate, cli.scoring);
   cmd->add_flag("-q,--quiet", run.quiet, "No progress on stderr");
 }

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/simcap/commands.h"
+#include "apps/simcap/number_checks.h"
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "tracker/ik_eval.h"
@@ -131,17 +132,17 @@ void add_ik_eval(CLI::App& app, Action& action) {
                   "(thesis: 1,1,0 for Boxing and Jump Kick; 0.1,0.1,1 for Playground)")
       ->expected(3)
       ->delimiter(',')
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative_number())
       ->capture_default_str();
   cmd->add_option("--damping", args.damping,
                   "DLS damping factor in metres (the thesis' 75, read as centimetres)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   cmd->add_flag("--no-limits", args.no_limits, "Do not apply the biomechanical joint limits");
   cmd->add_flag("--anatomical-hinges", args.anatomical_hinges,
                 "Use anatomical elbow and knee axes instead of the clip's own");
   cmd->add_option("--frames", args.frames, "Evaluate only the first N frames (default: all)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->footer(
       "Examples:\n"
       "  simcap ik-eval cmu_131_01_start_walk_stop.bvh --method sik -o out/ik/sik_walk\n"

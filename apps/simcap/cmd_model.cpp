@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "apps/simcap/commands.h"
+#include "apps/simcap/number_checks.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "models/body_mesh.h"
@@ -226,7 +227,7 @@ void add_model(CLI::App& app, Action& action) {
                 "arm_raise, turn)")
       ->excludes(bvh);
   m->add_option("--time", o->time_s, "Time in the motion, seconds")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative_number())
       ->capture_default_str();
   m->add_option("--set", o->set,
                 "Set one DOF in degrees on top of the pose, e.g. l_elbow_flexion=-90 "

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "apps/simcap/commands.h"
+#include "apps/simcap/number_checks.h"
 #include "core/joint_track.h"
 #include "models/bvh.h"
 #include "models/bvh_export.h"
@@ -94,7 +95,7 @@ void add_motion(CLI::App& app, Action& action) {
   auto add_unit = [o](CLI::App* cmd) {
     cmd->add_option("--metres-per-unit", o->metres_per_unit,
                     "Metres per BVH unit; 0 detects it from the skeleton's size (CMU: 0.0564444)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(non_negative_number())
         ->capture_default_str();
   };
 
@@ -120,7 +121,7 @@ void add_motion(CLI::App& app, Action& action) {
       ->check(CLI::Range(0.5, 2.6))
       ->capture_default_str();
   r->add_option("--fps", o->fps, "Resample the output to this frame rate (0: the clip's)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative_number())
       ->capture_default_str();
   r->add_flag("--no-floor", o->no_floor, "Keep the clip's height instead of putting feet on y = 0");
   add_unit(r);
@@ -137,15 +138,15 @@ void add_motion(CLI::App& app, Action& action) {
   g->add_option("--joints-csv", o->joints_csv,
                 "Also write its joint positions (frame,joint,x,y,z)");
   g->add_option("--duration", o->spec.duration_s, "Seconds")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative_number())
       ->capture_default_str();
-  g->add_option("--fps", o->fps, "Frames per second (default 30)")->check(CLI::PositiveNumber);
+  g->add_option("--fps", o->fps, "Frames per second (default 30)")->check(positive_number());
   g->add_option("--speed", o->spec.speed_m_s,
                 "Walking speed in m/s (walk_path); step rate scale (walk_in_place, turn)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   g->add_option("--radius", o->spec.path_radius, "Radius of the walk_path circle in metres")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   g->add_option("--turn", o->spec.turn_degrees, "Degrees to turn (turn)")->capture_default_str();
   g->add_option("--height", o->height, "Humanoid height in metres")

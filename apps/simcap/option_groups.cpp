@@ -1,4 +1,5 @@
 #include "apps/simcap/option_groups.h"
+#include "apps/simcap/number_checks.h"
 
 namespace simcap::cli {
 
@@ -8,7 +9,7 @@ void SeedOption::apply(RenderOptions& options) const {
 
 void add_render_options(CLI::App* cmd, RenderOptions& options, SeedOption& seed) {
   cmd->add_option("--frames", options.frames, "Frames to render (unset: the whole motion)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_option("--motion", options.motion_override,
                   "BVH file that replaces the first actor's motion")
       ->check(CLI::ExistingFile);
@@ -25,12 +26,12 @@ void add_scoring_options(CLI::App* cmd, ValidateOptions& options, ScoringOptions
   cmd->add_option("--failure-threshold", options.failure_threshold_mm,
                   "A frame whose MPJPE is above this (mm) counts as a tracking failure")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_flag("--no-media", scoring.no_media,
                 "Metrics only: no overlay images or video (the RGB frames are not read)");
   cmd->add_option("--fail-above", scoring.fail_above_mm,
                   "Exit with status 4 when the MPJPE is above this many mm (for CI)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
 }
 
 }  // namespace simcap::cli

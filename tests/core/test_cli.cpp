@@ -35,5 +35,25 @@ TEST(Cli, UnknownCommandFails) {
   EXPECT_NE(run_simcap("", &out), 0);
 }
 
+// Bounded numbers name the option, what was expected and what was given, before any work.
+TEST(Cli, OutOfRangeNumbersSayWhatWasExpected) {
+  const std::string scene = std::string(SIMCAP_SOURCE_DIR) + "/scenes/studio4.yaml";
+  const std::string bvh = std::string(SIMCAP_SHARED_DATA) + "/mocap/cmu_131_03_start_hop_stop.bvh";
+  const std::pair<std::string, std::string> cases[] = {
+      {"render " + scene + " -o never --frames 0",
+       "--frames: expected a number greater than 0, got '0'"},
+      {"render " + scene + " -o never --frames x",
+       "--frames: expected a number greater than 0, got 'x'"},
+      {"motion generate walk_path -o never.bvh --speed -1",
+       "--speed: expected a number greater than 0"},
+      {"ik-eval " + bvh + " --pelvis-weights 1,-1,0 -o never",
+       "--pelvis-weights: expected a number of at least 0, got '-1'"}};
+  for (const auto& [args, message] : cases) {
+    std::string out;
+    EXPECT_NE(run_simcap(args, &out), 0) << args;
+    EXPECT_NE(out.find(message), std::string::npos) << args << ":\n" << out;
+  }
+}
+
 }  // namespace
 }  // namespace simcap

@@ -220,6 +220,7 @@ TEST(BenchTrack, ReportsStagesRunsAndTheMedianRate) {
   EXPECT_NEAR(std::stod(log.substr(last + 13)), 0.5 * (fps[0] + fps[1]),
               0.11);  // each printed to 0.1
   EXPECT_NE(run_simcap("bench track " + dataset().string() + " --repeat 0", &log), 0);
+  EXPECT_NE(run_simcap("bench track " + dataset().string() + " --frames 0", &log), 0);
 }
 
 }  // namespace
