@@ -24,6 +24,7 @@ class SilhouetteView {
   // remembered, so this is not thread-safe.
   Eigen::Vector2i nearest(int u, int v) const;
   bool inside(int u, int v) const;
+  const cv::Mat& silhouette() const { return silhouette_; }
 
  private:
   const Camera* camera_;

@@ -15,6 +15,7 @@
 #include "models/humanoid.h"
 #include "tracker/auto_start.h"
 #include "tracker/dataset.h"
+#include "tracker/inspection.h"
 #include "tracker/pose_init.h"
 #include "tracker/sik_track_job.h"
 #include "tracker/surface_fit.h"
@@ -183,8 +184,30 @@ TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
     throw Error("--method: unknown tracker '" + options.method + "' (expected moschini or sik)");
   }
   if (!(options.voxel_m > 0)) throw Error("--voxel: must be positive");
+  std::optional<tracker::Dataset> inspected;
+  if (!options.inspect.empty()) {
+    inspected.emplace(dataset);
+    const std::vector<int> frames = inspected->frames(options.silhouettes == "gt" ? "mask" : "rgb");
+    for (const int f : options.inspect) {
+      if (std::find(frames.begin(), frames.end(), f) == frames.end()) {
+        throw Error("--inspect: frame " + std::to_string(f) + " is not in " + dataset.string() +
+                    (frames.empty() ? std::string(" (no frames)")
+                                    : " (frames " + std::to_string(frames.front()) + " to " +
+                                          std::to_string(frames.back()) + ")"));
+      }
+    }
+  }
   const fs::path diag = out / "diagnostics";
   fs::create_directories(diag);
+  // The inspected frames appear together when the track is complete, or not at all.
+  const fs::path inspect_partial = diag / "inspect.partial";
+  struct RemovePartial {
+    fs::path dir;
+    ~RemovePartial() {
+      std::error_code ignored;
+      fs::remove_all(dir, ignored);
+    }
+  } remove_partial{inspect_partial};
   JointTrack track;
   track.joints = he15_joints();
   CsvWriter centerline(diag / "centerline.csv", {"frame", "axis", "x", "y", "z", "voxels"});
@@ -213,6 +236,11 @@ TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
                       step.outside_fraction);
         timings.out() << buf;
         if (step.reinitialized) reinit.out() << obs.frame << "," << step.reason << "\n";
+        if (std::find(options.inspect.begin(), options.inspect.end(), obs.frame) !=
+            options.inspect.end()) {
+          std::snprintf(buf, sizeof buf, "%06d", obs.frame);
+          tracker::write_inspection(inspect_partial / buf, *inspected, obs, tracker, step.pose);
+        }
         if (!obs.silhouette_iou.empty()) {
           if (!iou)
             iou.emplace(diag / "silhouette_iou.csv",
@@ -258,6 +286,10 @@ TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
   reinit.commit();
   if (iou) iou->commit();
   write_joint_track(out / "joints3d.csv", track);
+  if (inspected) {
+    fs::remove_all(diag / "inspect");
+    fs::rename(inspect_partial, diag / "inspect");
+  }
   TrackSummary summary = run;
   summary.track = out;
   return summary;

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "tracker/moschini_tracker.h"
 #include "tracker/perception.h"
@@ -33,6 +34,8 @@ struct TrackOptions {
   // (needs gt/joints3d.csv): what is left is the error of the body model and the cues, without
   // the search's.
   bool oracle = false;
+  // moschini: frames to lay open in TRACK/diagnostics/inspect/FRAME/ (tracker/inspection.h).
+  std::vector<int> inspect;
   bool quiet = false;
   double sik_noise_m = 0.0;  // sik: Gaussian noise on the end-effectors, metres
   std::uint64_t seed = 1;    // sik: seed of that noise

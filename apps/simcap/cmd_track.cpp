@@ -2,6 +2,7 @@
 #include <cstdio>
 
 #include "apps/simcap/commands.h"
+#include "apps/simcap/number_checks.h"
 #include "tracker/track_job.h"
 
 namespace simcap::cli {
@@ -57,6 +58,12 @@ void add_track(CLI::App& app, Action& action) {
   cmd->add_flag("--oracle", options->oracle,
                 "moschini: start every frame from its ground-truth pose (a diagnostic: the error "
                 "left is the body model's and the cues', not the search's)");
+  cmd->add_option("--inspect", options->inspect,
+                  "moschini: frames to lay open, comma-separated: per camera an image with the "
+                  "silhouette's edge, centerline, capsule outlines and sticks drawn, and the "
+                  "hull's voxels (diagnostics/inspect/FRAME/)")
+      ->delimiter(',')
+      ->check(non_negative_number());
   cmd->add_option("--sik-noise", options->sik_noise_m,
                   "sik: standard deviation of the noise added to the end-effectors, metres")
       ->check(CLI::Range(0.0, 1.0))
@@ -71,10 +78,12 @@ void add_track(CLI::App& app, Action& action) {
       "  simcap track out/studio4 -o out/track_thesis --joints moschini --traversal on "
       "--filter ekf --appearance off\n"
       "  simcap track out/studio4 -o out/track_oracle --oracle\n"
+      "  simcap track out/studio4 -o out/track --inspect 0,100\n"
       "  simcap track out/studio4 -o out/track_sik --method sik --sik-noise 0.02\n"
       "Writes TRACK/joints3d.csv (frame,joint,x,y,z; the HE15 joints in H-Anim names) and\n"
       "TRACK/diagnostics/: centerline.csv, timings.csv, reinitializations.csv,\n"
-      "body_dimensions.csv and, for subtracted silhouettes, silhouette_iou.csv.");
+      "body_dimensions.csv, for subtracted silhouettes silhouette_iou.csv, and with --inspect\n"
+      "inspect/FRAME/camNN.png and hull.csv.");
   cmd->callback([&action, options, dataset, out] {
     action = [options, dataset, out] {
       const TrackSummary s = track_dataset(*dataset, *out, *options);

@@ -7,11 +7,13 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
+#include "core/csv.h"
 #include "core/image_io.h"
 #include "core/joint_track.h"
 #include "models/humanoid.h"
 #include "tests/support/temp_dir.h"
 #include "tests/tracker/capsule_dataset.h"
+#include "tracker/dataset.h"
 
 namespace simcap {
 namespace {
@@ -73,6 +75,55 @@ TEST(TrackJob, TracksTheCapsuleBodyWithGroundTruthSilhouettes) {
                        " --appearance off --quiet"),
             0);
   EXPECT_EQ(read_text(out / "t" / "joints3d.csv"), read_text(out / "v" / "joints3d.csv"));
+}
+
+// --inspect lays a frame open without changing the track; a frame the dataset lacks is refused
+// before anything is written.
+TEST(TrackJob, InspectWritesOverlaysAndTheHull) {
+  TempDir out;
+  std::string log;
+  ASSERT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / "t").string() +
+                           " --inspect 2 --quiet",
+                       &log),
+            0)
+      << log;
+  ASSERT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / "u").string() + " --quiet"),
+            0);
+  EXPECT_EQ(read_text(out / "t" / "joints3d.csv"), read_text(out / "u" / "joints3d.csv"));
+  const fs::path dir = out / "t" / "diagnostics" / "inspect" / "000002";
+  int cameras = 0;
+  for (; fs::exists(dir / ("cam0" + std::to_string(cameras) + ".png")); ++cameras) {
+    const cv::Mat image = read_image(dir / ("cam0" + std::to_string(cameras) + ".png"));
+    ASSERT_EQ(image.type(), CV_8UC3);
+    // RGB order: the silhouette's edge (255, 255, 0) and outline points inside it (0, 200, 0).
+    int edge = 0, inside = 0;
+    for (int r = 0; r < image.rows; ++r) {
+      for (int c = 0; c < image.cols; ++c) {
+        const cv::Vec3b p = image.at<cv::Vec3b>(r, c);
+        edge += p == cv::Vec3b(255, 255, 0);
+        inside += p == cv::Vec3b(0, 200, 0);
+      }
+    }
+    EXPECT_GT(edge, 20) << cameras;
+    EXPECT_GT(inside, 20) << cameras;
+  }
+  EXPECT_EQ(cameras, tracker::Dataset(dataset()).camera_count());
+  // hull.csv lists as many voxels as timings.csv counted for that frame.
+  std::istringstream timings(read_text(out / "t" / "diagnostics" / "timings.csv"));
+  std::string line, voxels;
+  while (std::getline(timings, line)) {
+    if (line.rfind("2,", 0) == 0) voxels = split_csv_line(line).at(6);
+  }
+  const std::string hull = read_text(dir / "hull.csv");
+  EXPECT_EQ(std::count(hull.begin(), hull.end(), '\n') - 1, std::stol(voxels));
+  EXPECT_FALSE(fs::exists(out / "t" / "diagnostics" / "inspect.partial"));
+
+  EXPECT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / "x").string() +
+                           " --inspect 2,99 --quiet",
+                       &log),
+            1);
+  EXPECT_NE(log.find("--inspect: frame 99 is not in"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(out / "x" / "joints3d.csv"));
 }
 
 // Started from the truth on every frame, the fit lands closer to it than the tracker does.
