@@ -112,6 +112,7 @@ class Normal {
     count_ += n;
   }
   double cost() const { return count_ ? cost_ / count_ : 0.0; }
+  int count() const { return count_; }
   // The residuals fill H's upper triangle only (a point's columns are in ascending parameter
   // order); this mirrors it.
   void symmetrize() {
@@ -254,7 +255,7 @@ PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets, cons
 
 double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
                              const StickPose& pose, const StickPose* start, Eigen::MatrixXd* H,
-                             Eigen::VectorXd* rhs) const {
+                             Eigen::VectorXd* rhs, int* count) const {
   const StickGeometry g = model_->geometry(pose);
   Normal normal(chains_, g, pose, H, rhs);
   // Centerline points: only the distance across a stick's line counts, except past a free tip.
@@ -322,12 +323,24 @@ double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
     }
   }
   normal.symmetrize();
+  if (count) *count = normal.count();
   return normal.cost();
 }
 
 double PoseRefiner::cost(const IcpTargets& targets, const StickPose& pose) const {
   return evaluate(targets, associate(targets, pose, nullptr), pose, targets.prediction, nullptr,
                   nullptr);
+}
+
+Eigen::VectorXd PoseRefiner::gradient(const IcpTargets& targets, const StickPose& pose) const {
+  const int np = 6 + model_->angle_count();
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(np, np);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(np);
+  int count = 0;
+  evaluate(targets, associate(targets, pose, nullptr), pose, targets.prediction, &H, &rhs, &count);
+  // rhs is Jᵀ W r for residuals r = data − model, and the cost Σ w² r² / count.
+  return count > 0 ? Eigen::VectorXd(-2.0 * rhs / count)
+                   : Eigen::VectorXd(Eigen::VectorXd::Zero(np));
 }
 
 void PoseRefiner::refine(const IcpTargets& targets, StickPose& pose) const {

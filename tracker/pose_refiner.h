@@ -57,6 +57,10 @@ class PoseRefiner {
   void refine(const IcpTargets& targets, StickPose& pose) const;
   // The weighted sum of squared residuals refine() minimizes, per residual; lower is better.
   double cost(const IcpTargets& targets, const StickPose& pose) const;
+  // The gradient of cost() by [root translation, root rotation (a left increment about the
+  // root), angles] as the normal equations build it, with targets.prediction as the motion
+  // prior's anchor, as cost() has it. Outline targets are held fixed, as refine() holds them.
+  Eigen::VectorXd gradient(const IcpTargets& targets, const StickPose& pose) const;
   const RefineOptions& options() const { return options_; }
 
  private:
@@ -65,10 +69,12 @@ class PoseRefiner {
   // tried first: the result is the same, found sooner.
   Associations associate(const IcpTargets& targets, const StickPose& pose,
                          const Associations* previous) const;
-  // The cost at `pose` with fixed associations, and the normal equations when H and g are given.
-  // With `start`, adds the motion prior towards it.
+  // The cost at `pose` with fixed associations, and the normal equations when H and g are given
+  // (`count`: how many residuals the cost averages). With `start`, adds the motion prior
+  // towards it.
   double evaluate(const IcpTargets& targets, const Associations& a, const StickPose& pose,
-                  const StickPose* start, Eigen::MatrixXd* H, Eigen::VectorXd* g) const;
+                  const StickPose* start, Eigen::MatrixXd* H, Eigen::VectorXd* g,
+                  int* count = nullptr) const;
   const StickModel* model_;
   BodySurface surface_;
   RefineOptions options_;

@@ -8,6 +8,7 @@
 #include "tests/tracker/ray_rig.h"
 #include "tests/tracker/refine_test_support.h"
 #include "tracker/icp_targets.h"
+#include "tracker/moschini_tracker.h"
 #include "tracker/pose_refiner.h"
 #include "tracker/silhouette_view.h"
 #include "tracker/surface_fit.h"
@@ -103,6 +104,53 @@ TEST(PoseRefiner, SilhouetteRaysPullADisplacedArmBack) {
   refiner.refine(targets, pose);
   EXPECT_LT(refiner.cost(targets, pose), 0.1 * cost_before);
   EXPECT_LT((hand(pose) - hand(truth)).norm(), 0.04);
+}
+
+// The gradient the normal equations build, against central differences of the cost itself,
+// for every term but the outlines (whose targets refine() holds fixed on purpose): centerline
+// points, stick samples off the hull, silhouette rays, and both priors. Two approximations of
+// the fit are kept out of it: capsules are untapered (a ray's residual is measured across the
+// axis, which ignores a taper's slope) and the motion prior's rotation is zero at the pose (its
+// gradient takes the rotation vector as linear in the increment).
+TEST(PoseRefiner, GradientMatchesFiniteDifferencesOfTheCost) {
+  const StickModel model(testing::capsule_body(), JointSet::urdf);
+  BodySurface surface = testing::capsule_surface();
+  for (CapsuleShape& c : surface) c.rb = c.ra;
+  StickPose truth = walking_pose();
+  const testing::RigObservation rig =
+      testing::observe_rig(model, surface, truth, testing::camera_ring(4),
+                           Eigen::AlignedBox3d(truth.t0 - Eigen::Vector3d(1.2, 1.05, 1.2),
+                                               truth.t0 + Eigen::Vector3d(1.2, 1.0, 1.2)));
+  IcpTargets targets = MoschiniTracker::targets_of(rig.observation);
+  targets.views = nullptr;
+  StickPose pose = truth;  // away from the truth, so that every term has residuals
+  pose.t0 += Eigen::Vector3d(0.03, -0.02, 0.025);
+  pose.R0 = Eigen::AngleAxisd(0.08, Eigen::Vector3d(0.3, 1, 0.2).normalized()) * pose.R0;
+  for (int k = 0; k < model.angle_count(); ++k) pose.theta[k] += 0.04 * ((k % 3) - 1);
+  truth.R0 = pose.R0;
+  targets.prediction = &truth;
+  const PoseRefiner refiner(model, surface);
+  ASSERT_GT(refiner.options().leg_prior_m_per_rad, 0);
+  ASSERT_GT(refiner.options().motion_prior_m_per_rad, 0);
+  const Eigen::VectorXd g = refiner.gradient(targets, pose);
+  ASSERT_EQ(g.size(), 6 + model.angle_count());
+  const double h = 1e-6;
+  auto moved = [&](int k, double d) {
+    StickPose p = pose;
+    if (k < 3) {
+      p.t0[k] += d;
+    } else if (k < 6) {
+      p.R0 = Eigen::AngleAxisd(d, Eigen::Vector3d::Unit(k - 3)) * p.R0;
+    } else {
+      p.theta[k - 6] += d;
+    }
+    return p;
+  };
+  for (int k = 0; k < g.size(); ++k) {
+    const double fd =
+        (refiner.cost(targets, moved(k, h)) - refiner.cost(targets, moved(k, -h))) / (2 * h);
+    EXPECT_NEAR(g[k], fd, 1e-5 * g.cwiseAbs().maxCoeff()) << "parameter " << k;
+  }
 }
 
 }  // namespace
