@@ -30,7 +30,10 @@ GaussianBackground::GaussianBackground(const std::vector<cv::Mat>& plates,
   const double floor = options.sigma_floor * options.sigma_floor;
   cv::max(var, floor, var);
   mean.convertTo(mean_, CV_32FC3);
-  var.convertTo(var_, CV_32FC3);
+  // Inverted in float, so that min(1/var, 1/noise²) per frame equals 1/max(var, noise²).
+  cv::Mat var32;
+  var.convertTo(var32, CV_32FC3);
+  cv::divide(1.0f, var32, inverse_var_, 1, CV_32FC3);
 }
 
 double GaussianBackground::frame_sigma(const cv::Mat& frame) const {
@@ -57,7 +60,7 @@ cv::Mat GaussianBackground::foreground(const cv::Mat& frame) const {
   }
   cv::Mat out(frame.size(), CV_8UC1);
   const float noise = options_.frame_noise ? static_cast<float>(frame_sigma(frame)) : 0.0f;
-  const float noise2 = noise * noise;
+  const float inverse_noise2 = 1.0f / (noise * noise);  // +inf without noise: no floor
   const float t2 = static_cast<float>(options_.threshold * options_.threshold);
   const float c2 = static_cast<float>(options_.shadow_chroma * options_.shadow_chroma);
   const float lo = static_cast<float>(options_.shadow_min_ratio);
@@ -66,11 +69,12 @@ cv::Mat GaussianBackground::foreground(const cv::Mat& frame) const {
     for (int r = rows.start; r < rows.end; ++r) {
       const cv::Vec3b* x = frame.ptr<cv::Vec3b>(r);
       const cv::Vec3f* mu = mean_.ptr<cv::Vec3f>(r);
-      const cv::Vec3f* var = var_.ptr<cv::Vec3f>(r);
+      const cv::Vec3f* inverse_var = inverse_var_.ptr<cv::Vec3f>(r);
       std::uint8_t* o = out.ptr<std::uint8_t>(r);
       for (int c = 0; c < frame.cols; ++c) {
-        const cv::Vec3f iv(1 / std::max(var[c][0], noise2), 1 / std::max(var[c][1], noise2),
-                           1 / std::max(var[c][2], noise2));
+        const cv::Vec3f iv(std::min(inverse_var[c][0], inverse_noise2),
+                           std::min(inverse_var[c][1], inverse_noise2),
+                           std::min(inverse_var[c][2], inverse_noise2));
         float d2 = 0, xm = 0, mm = 0;
         for (int k = 0; k < 3; ++k) {
           const float e = x[c][k] - mu[c][k];

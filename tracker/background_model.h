@@ -39,8 +39,8 @@ class GaussianBackground {
 
  private:
   BackgroundOptions options_;
-  cv::Mat mean_;  // CV_32FC3
-  cv::Mat var_;   // CV_32FC3, floored at sigma_floor²
+  cv::Mat mean_;         // CV_32FC3
+  cv::Mat inverse_var_;  // CV_32FC3, 1 / the variance floored at sigma_floor², in float
 };
 
 }  // namespace simcap::tracker
