@@ -72,6 +72,14 @@ TrackSummary run_moschini(const fs::path& dataset_path, const TrackOptions& opti
       throw Error(dataset_path.string() + ": rgb and mask frames differ" + hint);
   }
   if (max_frames >= 0 && static_cast<int>(frames.size()) > max_frames) frames.resize(max_frames);
+  for (const int f : options.inspect) {
+    if (std::find(frames.begin(), frames.end(), f) == frames.end()) {
+      throw Error("--inspect: frame " + std::to_string(f) + " is not in " + dataset_path.string() +
+                  (frames.empty() ? std::string(" (no frames)")
+                                  : " (frames " + std::to_string(frames.front()) + " to " +
+                                        std::to_string(frames.back()) + ")"));
+    }
+  }
   const bool compare_masks =
       method != SilhouetteMethod::gt && fs::is_directory(ds.root() / ds.cameras()[0].name / "mask");
 
@@ -158,7 +166,7 @@ TrackSummary run_moschini(const fs::path& dataset_path, const TrackOptions& opti
                          tracker->model(), joints_at(*truth, obs->frame, source), source));
                    }
                    const TrackStep step = tracker->step(*obs);
-                   sink(*obs, step, *tracker);
+                   sink(ds, *obs, step, *tracker);
                    progress.advance();
                  }));
   progress.finish();
@@ -184,19 +192,6 @@ TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
     throw Error("--method: unknown tracker '" + options.method + "' (expected moschini or sik)");
   }
   if (!(options.voxel_m > 0)) throw Error("--voxel: must be positive");
-  std::optional<tracker::Dataset> inspected;
-  if (!options.inspect.empty()) {
-    inspected.emplace(dataset);
-    const std::vector<int> frames = inspected->frames(options.silhouettes == "gt" ? "mask" : "rgb");
-    for (const int f : options.inspect) {
-      if (std::find(frames.begin(), frames.end(), f) == frames.end()) {
-        throw Error("--inspect: frame " + std::to_string(f) + " is not in " + dataset.string() +
-                    (frames.empty() ? std::string(" (no frames)")
-                                    : " (frames " + std::to_string(frames.front()) + " to " +
-                                          std::to_string(frames.back()) + ")"));
-      }
-    }
-  }
   const fs::path diag = out / "diagnostics";
   fs::create_directories(diag);
   // The inspected frames appear together when the track is complete, or not at all.
@@ -221,7 +216,8 @@ TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
   char buf[256];
   const TrackSummary run = run_moschini(
       dataset, options, -1,
-      [&](const Observation& obs, const TrackStep& step, const MoschiniTracker& tracker) {
+      [&](const Dataset& ds, const Observation& obs, const TrackStep& step,
+          const MoschiniTracker& tracker) {
         if (!dims) dims = tracker.model().dimensions(), surface = tracker.surface();
         track.add_frame(obs.frame, tracker.model().he15(step.pose));
         for (const CenterlinePoint& p : obs.centerline) {
@@ -239,7 +235,7 @@ TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
         if (std::find(options.inspect.begin(), options.inspect.end(), obs.frame) !=
             options.inspect.end()) {
           std::snprintf(buf, sizeof buf, "%06d", obs.frame);
-          tracker::write_inspection(inspect_partial / buf, *inspected, obs, tracker, step.pose);
+          tracker::write_inspection(inspect_partial / buf, ds, obs, tracker, step.pose);
         }
         if (!obs.silhouette_iou.empty()) {
           if (!iou)
@@ -286,7 +282,7 @@ TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
   reinit.commit();
   if (iou) iou->commit();
   write_joint_track(out / "joints3d.csv", track);
-  if (inspected) {
+  if (!options.inspect.empty()) {
     fs::remove_all(diag / "inspect");
     fs::rename(inspect_partial, diag / "inspect");
   }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "tracker/dataset.h"
 #include "tracker/moschini_tracker.h"
 #include "tracker/perception.h"
 
@@ -52,10 +53,11 @@ TrackSummary track_dataset(const std::filesystem::path& dataset, const std::file
                            const TrackOptions& options);
 
 // Moschini's pipeline without files: perception runs on several frames at once, tracking runs
-// in frame order, and `sink` sees every frame in order. `max_frames` < 0 means all. Used by
-// track_dataset and by `simcap bench track`.
-using MoschiniSink = std::function<void(const tracker::Observation&, const tracker::TrackStep&,
-                                        const tracker::MoschiniTracker&)>;
+// in frame order, and `sink` sees every frame in order (with the dataset it came from).
+// `max_frames` < 0 means all. Used by track_dataset and by `simcap bench track`.
+using MoschiniSink =
+    std::function<void(const tracker::Dataset&, const tracker::Observation&,
+                       const tracker::TrackStep&, const tracker::MoschiniTracker&)>;
 TrackSummary run_moschini(const std::filesystem::path& dataset, const TrackOptions& options,
                           int max_frames, const MoschiniSink& sink);
 

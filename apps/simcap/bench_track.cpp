@@ -43,8 +43,8 @@ int run(const BenchTrackOptions& o) {
   // Tracker and baseline alternate, so that a slow spell of a shared machine hits both.
   for (int r = 0; r < o.repeat; ++r) {
     s = run_moschini(o.dataset, options, o.frames,
-                     [&](const tracker::Observation& obs, const tracker::TrackStep& step,
-                         const tracker::MoschiniTracker&) {
+                     [&](const tracker::Dataset&, const tracker::Observation& obs,
+                         const tracker::TrackStep& step, const tracker::MoschiniTracker&) {
                        silhouettes += obs.silhouettes_ms;
                        hull += obs.hull_ms;
                        centerline += obs.centerline_ms;
