@@ -64,11 +64,10 @@ AutoStart auto_start(const std::vector<Observation>& first, const TrackerOptions
     for (int f = 0; f < frames; ++f) total += tracker.score(tracker.step(first[f]).pose, first[f]);
     return total;
   };
-  double scale = 1.0, shoulders = dims.d_s;
-  shoulders = least([&](double v) { return cost(dims_of(scale, v)); }, search.shoulders_lo,
-                    search.shoulders_hi, search.evaluations);
-  scale = least([&](double s) { return cost(dims_of(s, shoulders)); }, search.scale_lo,
-                search.scale_hi, search.evaluations);
+  const double shoulders = least([&](double v) { return cost(dims_of(1.0, v)); },
+                                 search.shoulders_lo, search.shoulders_hi, search.evaluations);
+  const double scale = least([&](double s) { return cost(dims_of(s, shoulders)); }, search.scale_lo,
+                             search.scale_hi, search.evaluations);
   dims = dims_of(scale, shoulders);
   MoschiniTracker tracker(dims, typical_surface(dims), fine);
   tracker.start(upright);
