@@ -33,6 +33,12 @@ const fs::path& dataset() {
   return root;
 }
 
+// `simcap track` on that dataset into `into`, quietly, with more options.
+int run_track(const fs::path& into, const std::string& options = "", std::string* log = nullptr) {
+  return run_simcap(
+      "track " + dataset().string() + " -o " + into.string() + " " + options + " --quiet", log);
+}
+
 double mpjpe_mm(const fs::path& gt_file, const fs::path& track_file) {
   const JointTrack gt = read_joint_track(gt_file);
   const JointTrack track = read_joint_track(track_file);
@@ -52,10 +58,7 @@ double mpjpe_mm(const fs::path& gt_file, const fs::path& track_file) {
 TEST(TrackJob, TracksTheCapsuleBodyWithGroundTruthSilhouettes) {
   TempDir out;
   std::string log;
-  ASSERT_EQ(
-      run_simcap("track " + dataset().string() + " -o " + (out / "t").string() + " --quiet", &log),
-      0)
-      << log;
+  ASSERT_EQ(run_track(out / "t", "", &log), 0) << log;
   const JointTrack track = read_joint_track(out / "t" / "joints3d.csv");
   EXPECT_EQ(track.joints, he15_joints());
   EXPECT_EQ(track.frames.size(), 6u);
@@ -65,15 +68,12 @@ TEST(TrackJob, TracksTheCapsuleBodyWithGroundTruthSilhouettes) {
     EXPECT_TRUE(fs::exists(out / "t" / "diagnostics" / f)) << f;
   }
   // Same input, same output.
-  ASSERT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / "u").string() + " --quiet"),
-            0);
+  ASSERT_EQ(run_track(out / "u"), 0);
   EXPECT_EQ(read_text(out / "t" / "joints3d.csv"), read_text(out / "u" / "joints3d.csv"));
   EXPECT_EQ(read_text(out / "t" / "diagnostics" / "centerline.csv"),
             read_text(out / "u" / "diagnostics" / "centerline.csv"));
   // Every capsule of this dataset has one colour: the appearance model rules nothing out.
-  ASSERT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / "v").string() +
-                       " --appearance off --quiet"),
-            0);
+  ASSERT_EQ(run_track(out / "v", "--appearance off"), 0);
   EXPECT_EQ(read_text(out / "t" / "joints3d.csv"), read_text(out / "v" / "joints3d.csv"));
 }
 
@@ -82,13 +82,8 @@ TEST(TrackJob, TracksTheCapsuleBodyWithGroundTruthSilhouettes) {
 TEST(TrackJob, InspectWritesOverlaysAndTheHull) {
   TempDir out;
   std::string log;
-  ASSERT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / "t").string() +
-                           " --inspect 2 --quiet",
-                       &log),
-            0)
-      << log;
-  ASSERT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / "u").string() + " --quiet"),
-            0);
+  ASSERT_EQ(run_track(out / "t", "--inspect 2", &log), 0) << log;
+  ASSERT_EQ(run_track(out / "u"), 0);
   EXPECT_EQ(read_text(out / "t" / "joints3d.csv"), read_text(out / "u" / "joints3d.csv"));
   const fs::path dir = out / "t" / "diagnostics" / "inspect" / "000002";
   int cameras = 0;
@@ -118,10 +113,7 @@ TEST(TrackJob, InspectWritesOverlaysAndTheHull) {
   EXPECT_EQ(std::count(hull.begin(), hull.end(), '\n') - 1, std::stol(voxels));
   EXPECT_FALSE(fs::exists(out / "t" / "diagnostics" / "inspect.partial"));
 
-  EXPECT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / "x").string() +
-                           " --inspect 2,99 --quiet",
-                       &log),
-            1);
+  EXPECT_EQ(run_track(out / "x", "--inspect 2,99", &log), 1);
   EXPECT_NE(log.find("--inspect: frame 99 is not in"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(out / "x" / "joints3d.csv"));
 }
@@ -131,11 +123,7 @@ TEST(TrackJob, TheOracleStartsEveryFrameFromTheTruth) {
   TempDir out;
   std::string log;
   for (const std::string name : {"t", "o"}) {
-    ASSERT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / name).string() +
-                             (name == "o" ? " --oracle" : "") + " --quiet",
-                         &log),
-              0)
-        << log;
+    ASSERT_EQ(run_track(out / name, name == "o" ? "--oracle" : "", &log), 0) << log;
   }
   const fs::path gt = dataset() / "gt" / "joints3d.csv";
   const double oracle = mpjpe_mm(gt, out / "o" / "joints3d.csv");
@@ -157,22 +145,14 @@ TEST(TrackJob, TheOracleStartsEveryFrameFromTheTruth) {
 TEST(TrackJob, RunsMoschinisEkfOnHisJointSet) {
   TempDir out;
   std::string log;
-  ASSERT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / "t").string() +
-                           " --filter ekf --joints moschini --traversal on --quiet",
-                       &log),
-            0)
-      << log;
+  ASSERT_EQ(run_track(out / "t", "--filter ekf --joints moschini --traversal on", &log), 0) << log;
   EXPECT_LT(mpjpe_mm(dataset() / "gt" / "joints3d.csv", out / "t" / "joints3d.csv"), 60.0);
 }
 
 TEST(TrackJob, SubtractedSilhouettesAreScoredAgainstTheMasks) {
   TempDir out;
   std::string log;
-  ASSERT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / "t").string() +
-                           " --silhouettes bgsub --quiet",
-                       &log),
-            0)
-      << log;
+  ASSERT_EQ(run_track(out / "t", "--silhouettes bgsub", &log), 0) << log;
   std::istringstream iou(read_text(out / "t" / "diagnostics" / "silhouette_iou.csv"));
   std::string line;
   std::getline(iou, line);
@@ -189,11 +169,7 @@ TEST(TrackJob, SubtractedSilhouettesAreScoredAgainstTheMasks) {
 TEST(TrackJob, AutoInitializationFindsTheBody) {
   TempDir out;
   std::string log;
-  ASSERT_EQ(run_simcap("track " + dataset().string() + " -o " + (out / "t").string() +
-                           " --init auto --quiet",
-                       &log),
-            0)
-      << log;
+  ASSERT_EQ(run_track(out / "t", "--init auto", &log), 0) << log;
   EXPECT_LT(mpjpe_mm(dataset() / "gt" / "joints3d.csv", out / "t" / "joints3d.csv"), 80.0);
 }
 
