@@ -25,7 +25,7 @@ struct Table {
 // turns the bone from it to its children, as an H-Anim joint turns its segment.
 const std::vector<Table>& tables() {
   static const std::vector<Table> t = {
-      // CMU's BVH conversion of its ASF skeletons (the files in shared/data/mocap): ASF bone
+      // CMU's BVH conversion of its ASF skeletons (the clips in models/assets): ASF bone
       // names for the spine and hands, Biovision-like names elsewhere. LeftWrist turns the
       // hand; lhand (always zero) only carries the fingers.
       {"cmu-asf",

@@ -1,7 +1,6 @@
 #include "apps/simcap/closed_loop.h"
-#include "apps/simcap/number_checks.h"
+#include "apps/simcap/track_cli.h"
 
-#include <charconv>
 #include <chrono>
 #include <cstdio>
 
@@ -21,16 +20,6 @@ void announce(bool quiet, int stage, const char* what) {
   if (!quiet) std::fprintf(stderr, "[%d/3] %s\n", stage, what);
 }
 
-template <typename T>
-T parse_option(const fs::path& sweep_file, const std::string& name, const std::string& text) {
-  T v{};
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
-  if (ec != std::errc() || end != text.data() + text.size()) {
-    throw_input_error(sweep_file, 0, "track." + name, "expected a number, got '" + text + "'");
-  }
-  return v;
-}
-
 }  // namespace
 
 LoopResult run_closed_loop(const LoopRun& run, const fs::path& out) {
@@ -40,7 +29,7 @@ LoopResult run_closed_loop(const LoopRun& run, const fs::path& out) {
   RenderOptions render = run.render;
   render.overwrite = !render.resume;
   render.quiet = run.quiet;
-  TrackOptions track = run.track;
+  tracker::TrackOptions track = run.track;
   track.quiet = run.quiet;
   ValidateOptions validate = run.validate;
   validate.quiet = run.quiet;
@@ -56,12 +45,9 @@ LoopResult run_closed_loop(const LoopRun& run, const fs::path& out) {
     r.dataset = run.existing_dataset;
   }
 
-  announce(run.quiet, 2,
-           ("track (" + track.method + ", silhouettes " + track.silhouettes + ", init " +
-            track.init + ")")
-               .c_str());
+  announce(run.quiet, 2, ("track (" + track_options_text(track) + ")").c_str());
   t = std::chrono::steady_clock::now();
-  r.track = track_dataset(r.dataset, out / "track", track);
+  r.track = tracker::track_dataset(r.dataset, out / "track", track);
   r.track_s = seconds_since(t);
 
   announce(run.quiet, 3, "validate");
@@ -101,15 +87,7 @@ std::string loop_summary_text(const LoopResult& r) {
 
 void add_loop_options(CLI::App* cmd, LoopRun& run, LoopCliOptions& cli) {
   add_render_options(cmd, run.render, cli.seed);
-  cmd->add_option("--method", run.track.method, "Tracker")->capture_default_str();
-  cmd->add_option("--silhouettes", run.track.silhouettes,
-                  "Silhouettes the tracker uses: gt (rendered masks), bgsub, mog2")
-      ->capture_default_str();
-  cmd->add_option("--init", run.track.init, "Tracker initialization: gt or auto")
-      ->capture_default_str();
-  cmd->add_option("--voxel", run.track.voxel_m, "Visual hull voxel size, metres")
-      ->capture_default_str()
-      ->check(positive_number());
+  add_track_options(cmd, run.track, TrackOptionScope::loop);
   add_scoring_options(cmd, run.validate, cli.scoring);
   cmd->add_flag("-q,--quiet", run.quiet, "No progress on stderr");
 }
@@ -128,33 +106,7 @@ LoopRun loop_run_of(const LoopConfig& c, const fs::path& sweep_file, bool quiet)
   run.render.overrides = c.scene_overrides;
   run.validate.failure_threshold_mm = c.failure_threshold_mm;
   run.quiet = quiet;
-  for (const auto& [name, value] : c.track_options) {
-    if (name == "method") {
-      run.track.method = value;
-    } else if (name == "silhouettes") {
-      run.track.silhouettes = value;
-    } else if (name == "init") {
-      run.track.init = value;
-    } else if (name == "appearance") {
-      run.track.appearance = value;
-    } else if (name == "filter") {
-      run.track.filter = value;
-    } else if (name == "joints") {
-      run.track.joints = value;
-    } else if (name == "traversal") {
-      run.track.traversal = value;
-    } else if (name == "voxel_m") {
-      run.track.voxel_m = parse_option<double>(sweep_file, name, value);
-    } else if (name == "sik_noise_m") {
-      run.track.sik_noise_m = parse_option<double>(sweep_file, name, value);
-    } else if (name == "seed") {
-      run.track.seed = parse_option<std::uint64_t>(sweep_file, name, value);
-    } else {
-      throw_input_error(sweep_file, 0, "track." + name,
-                        "unknown tracker option; expected method, silhouettes, init, appearance, "
-                        "filter, joints, traversal, voxel_m, sik_noise_m or seed");
-    }
-  }
+  apply_sweep_track_options(c.track_options, sweep_file, run.track);
   return run;
 }
 

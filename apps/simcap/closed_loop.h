@@ -8,7 +8,7 @@
 
 #include "apps/simcap/option_groups.h"
 #include "sim/render_job.h"
-#include "tracker/track_job.h"
+#include "tracker/registry.h"
 #include "validate/sweep_spec.h"
 #include "validate/validate_job.h"
 
@@ -17,7 +17,7 @@ namespace simcap::cli {
 struct LoopRun {
   std::filesystem::path scene;
   RenderOptions render;
-  TrackOptions track;
+  tracker::TrackOptions track;
   ValidateOptions validate;
   bool quiet = false;
   // When set, this dataset is tracked and validated as it is and nothing is rendered (a sweep
@@ -41,8 +41,8 @@ LoopResult run_closed_loop(const LoopRun& run, const std::filesystem::path& out)
 // The stage table (time, rate) and the headline metrics, then the report's path.
 std::string loop_summary_text(const LoopResult& result);
 
-// The options of `loop` that `demo` shares: the render and scoring groups (option_groups.h),
-// track (--method, --silhouettes, --init, --voxel) and --quiet.
+// The options of `loop` that `demo` shares: the render and scoring groups (option_groups.h), the
+// tracker's (track_cli.h) and --quiet.
 struct LoopCliOptions {
   SeedOption seed;
   ScoringOptions scoring;

@@ -28,7 +28,7 @@ int run_demo(DemoArgs& args) {
                  "simcap demo: render %d frames of the CMU 131_01 walk in the 4-camera studio "
                  "(%s), track them with the %s tracker and validate against the ground truth\n",
                  args.run.render.frames, args.run.scene.string().c_str(),
-                 args.run.track.method.c_str());
+                 std::string(name_of(tracker::kTrackMethods, args.run.track.method)).c_str());
   }
   const LoopResult r = run_closed_loop(args.run, args.out);
   std::printf("%s", loop_summary_text(r).c_str());

@@ -9,7 +9,7 @@
 #include "apps/simcap/number_checks.h"
 #include "core/atomic_file.h"
 #include "core/csv.h"
-#include "tracker/ik_eval.h"
+#include "tracker/unzueta/ik_eval.h"
 
 namespace simcap::cli {
 namespace {

@@ -4,7 +4,6 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
-#include <string_view>
 
 namespace simcap::cli {
 
@@ -21,8 +20,5 @@ void add_model(CLI::App& app, Action& action);
 void add_motion(CLI::App& app, Action& action);
 void add_ik_eval(CLI::App& app, Action& action);
 void add_version(CLI::App& app, Action& action);
-
-// Says that `command` is not built yet (and which issue brings it) and returns exit code 2.
-int not_built_yet(std::string_view command, std::string_view issue);
 
 }  // namespace simcap::cli

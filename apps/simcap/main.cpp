@@ -1,21 +1,9 @@
 // simcap: render labelled multi-camera sequences of H-Anim humanoids, track them, validate.
-#include <cstdio>
 #include <exception>
 #include <iostream>
 
 #include "apps/simcap/commands.h"
 #include "core/error.h"
-
-namespace simcap::cli {
-
-int not_built_yet(std::string_view command, std::string_view issue) {
-  std::fprintf(stderr, "simcap %.*s: not built yet (planned in issue %.*s); nothing was done.\n",
-               static_cast<int>(command.size()), command.data(), static_cast<int>(issue.size()),
-               issue.data());
-  return 2;
-}
-
-}  // namespace simcap::cli
 
 int main(int argc, char** argv) {
   using namespace simcap::cli;

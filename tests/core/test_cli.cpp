@@ -38,7 +38,7 @@ TEST(Cli, UnknownCommandFails) {
 // Bounded numbers name the option, what was expected and what was given, before any work.
 TEST(Cli, OutOfRangeNumbersSayWhatWasExpected) {
   const std::string scene = std::string(SIMCAP_SOURCE_DIR) + "/scenes/studio4.yaml";
-  const std::string bvh = std::string(SIMCAP_SHARED_DATA) + "/mocap/cmu_131_03_start_hop_stop.bvh";
+  const std::string bvh = std::string(SIMCAP_MOCAP_DIR) + "/cmu_131_03_start_hop_stop.bvh";
   const std::pair<std::string, std::string> cases[] = {
       {"render " + scene + " -o never --frames 0",
        "--frames: expected a number greater than 0, got '0'"},

@@ -123,8 +123,7 @@ TEST(Bvh, ConvertsUnitsAndDetectsThem) {
   EXPECT_DOUBLE_EQ(cm.values[9 + 0], 30.0);
   EXPECT_THROW(parse_bvh(kMixed, "x.bvh", {.metres_per_unit = -1}), Error);
 
-  const BvhClip cmu =
-      read_bvh(std::string(SIMCAP_SHARED_DATA) + "/mocap/cmu_131_01_start_walk_stop.bvh");
+  const BvhClip cmu = read_bvh(std::string(SIMCAP_MOCAP_DIR) + "/cmu_131_01_start_walk_stop.bvh");
   EXPECT_TRUE(cmu.units_detected);
   EXPECT_DOUBLE_EQ(cmu.metres_per_unit, kCmuMetresPerUnit);
   EXPECT_EQ(cmu.frame_count(), 994);
@@ -133,9 +132,8 @@ TEST(Bvh, ConvertsUnitsAndDetectsThem) {
   const int knee = cmu.find("LeftKnee");
   ASSERT_GE(knee, 0);
   EXPECT_NEAR(cmu.joints[knee].offset.y(), -6.85026 * 0.0254 / 0.45, 1e-12);
-  const BvhClip inches =
-      read_bvh(std::string(SIMCAP_SHARED_DATA) + "/mocap/cmu_131_01_start_walk_stop.bvh",
-               {.metres_per_unit = 0.0254});
+  const BvhClip inches = read_bvh(std::string(SIMCAP_MOCAP_DIR) + "/cmu_131_01_start_walk_stop.bvh",
+                                  {.metres_per_unit = 0.0254});
   EXPECT_NEAR(inches.joints[knee].offset.y(), -6.85026 * 0.0254, 1e-12);
 }
 
@@ -143,7 +141,7 @@ TEST(Bvh, ShippedWalkIsTheCmuClip) {
   const BvhClip shipped =
       read_bvh(std::string(SIMCAP_SOURCE_DIR) + "/models/assets/cmu_131_01_start_walk_stop.bvh");
   const BvhClip shared =
-      read_bvh(std::string(SIMCAP_SHARED_DATA) + "/mocap/cmu_131_01_start_walk_stop.bvh");
+      read_bvh(std::string(SIMCAP_MOCAP_DIR) + "/cmu_131_01_start_walk_stop.bvh");
   EXPECT_EQ(shipped.frame_count(), 994);
   EXPECT_EQ(shipped.values, shared.values);
 }

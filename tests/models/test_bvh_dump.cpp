@@ -68,7 +68,7 @@ Eigen::Matrix4d channel_matrix(const std::string& channel, double v) {
 }
 
 TEST(BvhDump, CmuWalkMatchesIndependentForwardKinematics) {
-  const std::string bvh = std::string(SIMCAP_SHARED_DATA) + "/mocap/cmu_131_01_start_walk_stop.bvh";
+  const std::string bvh = std::string(SIMCAP_MOCAP_DIR) + "/cmu_131_01_start_walk_stop.bvh";
   testing::TempDir dir;
   const auto csv = dir / "joints.csv";
   std::string output;

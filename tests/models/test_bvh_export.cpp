@@ -67,8 +67,7 @@ TEST(BvhExport, CentimetresAreDetectedOnTheWayBack) {
 }
 
 TEST(BvhExport, CmuSkeletonRoundTrips) {
-  const BvhClip clip =
-      read_bvh(std::string(SIMCAP_SHARED_DATA) + "/mocap/cmu_131_03_start_hop_stop.bvh");
+  const BvhClip clip = read_bvh(std::string(SIMCAP_MOCAP_DIR) + "/cmu_131_03_start_hop_stop.bvh");
   const BvhSkeleton original = skeleton_from_bvh(clip);
   testing::TempDir dir;
   write_bvh(dir / "hop.bvh", original.skeleton, original.motion);

@@ -16,7 +16,7 @@
 namespace simcap {
 namespace {
 
-const std::string kWalk = std::string(SIMCAP_SHARED_DATA) + "/mocap/cmu_131_01_start_walk_stop.bvh";
+const std::string kWalk = std::string(SIMCAP_MOCAP_DIR) + "/cmu_131_01_start_walk_stop.bvh";
 
 const char* kGood =
     "HIERARCHY\n"

@@ -15,7 +15,7 @@
 namespace simcap {
 namespace {
 
-const std::string kWalk = std::string(SIMCAP_SHARED_DATA) + "/mocap/cmu_131_01_start_walk_stop.bvh";
+const std::string kWalk = std::string(SIMCAP_MOCAP_DIR) + "/cmu_131_01_start_walk_stop.bvh";
 
 bool contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();

@@ -1,0 +1,116 @@
+#include "apps/simcap/track_cli.h"
+
+#include <array>
+
+#include "apps/simcap/choice_option.h"
+#include "apps/simcap/number_checks.h"
+#include "core/error.h"
+#include "tracker/registry.h"
+
+namespace simcap::cli {
+
+namespace {
+
+// Sweep keys and the options they set (sweep files name the voxel and noise with their unit).
+constexpr std::array<std::pair<std::string_view, std::string_view>, 10> kSweepKeys{{
+    {"method", "--method"},
+    {"silhouettes", "--silhouettes"},
+    {"init", "--init"},
+    {"appearance", "--appearance"},
+    {"filter", "--filter"},
+    {"joints", "--joints"},
+    {"traversal", "--traversal"},
+    {"voxel_m", "--voxel"},
+    {"sik_noise_m", "--sik-noise"},
+    {"seed", "--seed"},
+}};
+
+std::string method_help() {
+  std::string help = "Tracker:";
+  for (const tracker::TrackerFamily& f : tracker::tracker_families()) {
+    help += std::string(help.back() == ':' ? " " : "; ") +
+            std::string(name_of(tracker::kTrackMethods, f.method)) + " (" + std::string(f.summary) +
+            ")";
+  }
+  return help;
+}
+
+}  // namespace
+
+void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope scope) {
+  using namespace tracker;
+  add_choice(cmd, "--method", o.method, kTrackMethods, method_help());
+  add_choice(cmd, "--silhouettes", o.moschini.silhouettes, kSilhouetteMethods,
+             "Silhouettes: gt (the dataset's masks), bgsub (Gaussian background model), mog2 "
+             "(OpenCV MOG2)");
+  add_choice(cmd, "--init", o.init, kInitMethods,
+             "First pose: gt (ground truth of the first frame) or auto (the hull of a person "
+             "standing upright)");
+  cmd->add_option("--voxel", o.moschini.voxel_m, "moschini: visual hull voxel size, metres")
+      ->check(CLI::Range(0.005, 0.2))
+      ->capture_default_str();
+  add_choice(cmd, "--joints", o.moschini.joints, kJointSets,
+             "moschini: joint set, moschini (Table 5.1, 23-parameter EKF) or urdf (adds hip "
+             "twists, a spine joint, wrists and ankles)");
+  add_choice(cmd, "--appearance", o.moschini.appearance, kOnOff,
+             "moschini: learn the parts' colours on the first frame so that a silhouette pixel "
+             "only meets the parts it may show (an arm in front of the torso)");
+  add_choice(cmd, "--filter", o.moschini.filter, kMotionFilters,
+             "moschini: none (each frame's fit is the estimate) or ekf (Moschini's EKF smooths "
+             "the fits; it lags a moving body)");
+  add_choice(cmd, "--traversal", o.moschini.traversal, kOnOff,
+             "moschini: on (each frame also tries Moschini's hierarchical ICP traversal and keeps "
+             "the better fit) or off (the joint refinement from the previous pose)");
+  cmd->add_flag("--oracle", o.moschini.oracle,
+                "moschini: start every frame from its ground-truth pose (a diagnostic: the error "
+                "left is the body model's and the cues', not the search's)");
+  cmd->add_option("--sik-noise", o.sik.noise_sigma_m,
+                  "sik: standard deviation of the noise added to the end-effectors, metres")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  if (scope == TrackOptionScope::loop) return;
+  cmd->add_option("--inspect", o.moschini.inspect,
+                  "moschini: frames to lay open, comma-separated: per camera an image with the "
+                  "silhouette's edge, centerline, capsule outlines and sticks drawn, and the "
+                  "hull's voxels (diagnostics/inspect/FRAME/)")
+      ->delimiter(',')
+      ->check(non_negative_number());
+  cmd->add_option("--seed", o.sik.seed, "sik: seed of that noise")->capture_default_str();
+  cmd->add_flag("-q,--quiet", o.quiet, "No progress on stderr");
+}
+
+void apply_sweep_track_options(const std::vector<std::pair<std::string, std::string>>& keys,
+                               const std::filesystem::path& sweep_file,
+                               tracker::TrackOptions& options) {
+  CLI::App parser;
+  add_track_options(&parser, options, TrackOptionScope::track);
+  for (const auto& [key, value] : keys) {
+    std::string_view flag;
+    std::string known;
+    for (const auto& [k, f] : kSweepKeys) {
+      if (k == key) flag = f;
+      known += (known.empty() ? "" : ", ") + std::string(k);
+    }
+    if (flag.empty()) {
+      throw_input_error(sweep_file, 0, "track." + key,
+                        "unknown tracker option; expected one of " + known);
+    }
+    try {
+      // CLI11 takes the arguments in reverse order.
+      parser.parse(std::vector<std::string>{value, std::string(flag)});
+    } catch (const CLI::ParseError& e) {
+      throw_input_error(sweep_file, 0, "track." + key, e.what());
+    }
+  }
+}
+
+std::string track_options_text(const tracker::TrackOptions& o) {
+  using namespace tracker;
+  std::string s(name_of(kTrackMethods, o.method));
+  if (o.method == TrackMethod::moschini) {
+    s += ", silhouettes " + std::string(name_of(kSilhouetteMethods, o.moschini.silhouettes));
+  }
+  return s + ", init " + std::string(name_of(kInitMethods, o.init));
+}
+
+}  // namespace simcap::cli

@@ -1,0 +1,69 @@
+// The dataset's PNG decoder against OpenCV's: the same pixels for every kind of file, and the
+// same refusal of damaged ones.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <opencv2/imgcodecs.hpp>
+#include <random>
+
+#include "tests/support/temp_dir.h"
+#include "tracker/common/png_decoder.h"
+
+namespace simcap::tracker {
+namespace {
+
+namespace fs = std::filesystem;
+
+cv::Mat noise(int type) {
+  cv::Mat m(37, 53, type);
+  cv::randu(m, 0, CV_MAT_DEPTH(type) == CV_16U ? 65536 : 256);
+  return m;
+}
+
+bool same(const cv::Mat& a, const cv::Mat& b) {
+  if (a.empty() || b.empty()) return a.empty() && b.empty();
+  return a.size() == b.size() && a.type() == b.type() && cv::norm(a, b, cv::NORM_INF) == 0;
+}
+
+TEST(PngDecoder, DecodesEveryKindOfFileAsOpenCvDoes) {
+  testing::TempDir dir;
+  cv::theRNG().state = 7;
+  const std::vector<std::pair<std::string, cv::Mat>> files = {{"grey.png", noise(CV_8UC1)},
+                                                              {"colour.png", noise(CV_8UC3)},
+                                                              {"alpha.png", noise(CV_8UC4)},
+                                                              {"grey16.png", noise(CV_16UC1)},
+                                                              {"colour16.png", noise(CV_16UC3)}};
+  for (const auto& [name, image] : files) {
+    const fs::path path = dir / name;
+    ASSERT_TRUE(cv::imwrite(path.string(), image));
+    for (const int flags : {cv::IMREAD_UNCHANGED, cv::IMREAD_COLOR, cv::IMREAD_GRAYSCALE}) {
+      EXPECT_TRUE(same(decode_png(path, flags), cv::imread(path.string(), flags)))
+          << name << " flags " << flags;
+    }
+  }
+}
+
+TEST(PngDecoder, RefusesDamagedFilesAsOpenCvDoes) {
+  testing::TempDir dir;
+  cv::theRNG().state = 11;
+  const fs::path good = dir / "good.png";
+  ASSERT_TRUE(cv::imwrite(good.string(), noise(CV_8UC3)));
+  std::ifstream in(good, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto write = [&](const std::string& name, const std::string& content) {
+    std::ofstream(dir / name, std::ios::binary) << content;
+    return dir / name;
+  };
+  std::string flipped = bytes;
+  flipped[flipped.size() / 2] ^= 0x5a;  // inside the image data: its chunk CRC no longer matches
+  for (const fs::path& path :
+       {write("truncated.png", bytes.substr(0, bytes.size() / 2)), write("flipped.png", flipped),
+        write("empty.png", ""), write("text.png", "not a picture"), dir / "missing.png"}) {
+    const cv::Mat decoded = decode_png(path, cv::IMREAD_COLOR);
+    EXPECT_TRUE(decoded.empty()) << path;
+    EXPECT_TRUE(same(decoded, cv::imread(path.string(), cv::IMREAD_COLOR))) << path;
+  }
+}
+
+}  // namespace
+}  // namespace simcap::tracker

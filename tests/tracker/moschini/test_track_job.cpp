@@ -1,0 +1,254 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <opencv2/core.hpp>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "core/csv.h"
+#include "core/image_io.h"
+#include "core/joint_track.h"
+#include "models/humanoid.h"
+#include "tests/support/temp_dir.h"
+#include "tests/tracker/capsule_dataset.h"
+#include "tracker/common/dataset.h"
+
+namespace simcap {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::run_simcap;
+using testing::TempDir;
+
+// One capsule dataset shared by the tests of this file (rendering it takes a second).
+const fs::path& dataset() {
+  static TempDir dir;
+  static const fs::path root = [] {
+    const fs::path r = dir / "capsules";
+    testing::write_capsule_dataset(r);
+    return r;
+  }();
+  return root;
+}
+
+// `simcap track` on that dataset into `into`, quietly, with more options.
+int run_track(const fs::path& into, const std::string& options = "", std::string* log = nullptr) {
+  return run_simcap(
+      "track " + dataset().string() + " -o " + into.string() + " " + options + " --quiet", log);
+}
+
+double mpjpe_mm(const fs::path& gt_file, const fs::path& track_file) {
+  const JointTrack gt = read_joint_track(gt_file);
+  const JointTrack track = read_joint_track(track_file);
+  double sum = 0;
+  int n = 0;
+  for (size_t f = 0; f < track.frames.size(); ++f) {
+    const size_t g =
+        std::find(gt.frames.begin(), gt.frames.end(), track.frames[f]) - gt.frames.begin();
+    for (size_t j = 0; j < track.joints.size(); ++j) {
+      sum += (track.positions[f][j] - gt.positions[g][gt.joint_index(track.joints[j])]).norm();
+      ++n;
+    }
+  }
+  return 1000 * sum / n;
+}
+
+TEST(TrackJob, TracksTheCapsuleBodyWithGroundTruthSilhouettes) {
+  TempDir out;
+  std::string log;
+  ASSERT_EQ(run_track(out / "t", "", &log), 0) << log;
+  const JointTrack track = read_joint_track(out / "t" / "joints3d.csv");
+  EXPECT_EQ(track.joints, he15_joints());
+  EXPECT_EQ(track.frames.size(), 6u);
+  EXPECT_LT(mpjpe_mm(dataset() / "gt" / "joints3d.csv", out / "t" / "joints3d.csv"), 40.0);
+  for (const char* f :
+       {"centerline.csv", "timings.csv", "reinitializations.csv", "body_dimensions.csv"}) {
+    EXPECT_TRUE(fs::exists(out / "t" / "diagnostics" / f)) << f;
+  }
+  // Same input, same output.
+  ASSERT_EQ(run_track(out / "u"), 0);
+  EXPECT_EQ(read_text(out / "t" / "joints3d.csv"), read_text(out / "u" / "joints3d.csv"));
+  EXPECT_EQ(read_text(out / "t" / "diagnostics" / "centerline.csv"),
+            read_text(out / "u" / "diagnostics" / "centerline.csv"));
+  // Every capsule of this dataset has one colour: the appearance model rules nothing out.
+  ASSERT_EQ(run_track(out / "v", "--appearance off"), 0);
+  EXPECT_EQ(read_text(out / "t" / "joints3d.csv"), read_text(out / "v" / "joints3d.csv"));
+}
+
+// --inspect lays a frame open without changing the track; a frame the dataset lacks is refused
+// before anything is written.
+TEST(TrackJob, InspectWritesOverlaysAndTheHull) {
+  TempDir out;
+  std::string log;
+  ASSERT_EQ(run_track(out / "t", "--inspect 2", &log), 0) << log;
+  ASSERT_EQ(run_track(out / "u"), 0);
+  EXPECT_EQ(read_text(out / "t" / "joints3d.csv"), read_text(out / "u" / "joints3d.csv"));
+  const fs::path dir = out / "t" / "diagnostics" / "inspect" / "000002";
+  int cameras = 0;
+  for (; fs::exists(dir / ("cam0" + std::to_string(cameras) + ".png")); ++cameras) {
+    const cv::Mat image = read_image(dir / ("cam0" + std::to_string(cameras) + ".png"));
+    ASSERT_EQ(image.type(), CV_8UC3);
+    // RGB order: the silhouette's edge (255, 255, 0) and outline points inside it (0, 200, 0).
+    int edge = 0, inside = 0;
+    for (int r = 0; r < image.rows; ++r) {
+      for (int c = 0; c < image.cols; ++c) {
+        const cv::Vec3b p = image.at<cv::Vec3b>(r, c);
+        edge += p == cv::Vec3b(255, 255, 0);
+        inside += p == cv::Vec3b(0, 200, 0);
+      }
+    }
+    EXPECT_GT(edge, 20) << cameras;
+    EXPECT_GT(inside, 20) << cameras;
+  }
+  EXPECT_EQ(cameras, tracker::Dataset(dataset()).camera_count());
+  // hull.csv lists as many voxels as timings.csv counted for that frame.
+  std::istringstream timings(read_text(out / "t" / "diagnostics" / "timings.csv"));
+  std::string line, voxels;
+  while (std::getline(timings, line)) {
+    if (line.rfind("2,", 0) == 0) voxels = split_csv_line(line).at(6);
+  }
+  const std::string hull = read_text(dir / "hull.csv");
+  EXPECT_EQ(std::count(hull.begin(), hull.end(), '\n') - 1, std::stol(voxels));
+  EXPECT_FALSE(fs::exists(out / "t" / "diagnostics" / "inspect.partial"));
+
+  EXPECT_EQ(run_track(out / "x", "--inspect 2,99", &log), 1);
+  EXPECT_NE(log.find("--inspect: frame 99 is not in"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(out / "x" / "joints3d.csv"));
+}
+
+// Started from the truth on every frame, the fit lands closer to it than the tracker does.
+TEST(TrackJob, TheOracleStartsEveryFrameFromTheTruth) {
+  TempDir out;
+  std::string log;
+  for (const std::string name : {"t", "o"}) {
+    ASSERT_EQ(run_track(out / name, name == "o" ? "--oracle" : "", &log), 0) << log;
+  }
+  const fs::path gt = dataset() / "gt" / "joints3d.csv";
+  const double oracle = mpjpe_mm(gt, out / "o" / "joints3d.csv");
+  EXPECT_LT(oracle, 25.0);
+  EXPECT_LE(oracle, mpjpe_mm(gt, out / "t" / "joints3d.csv") + 1.0);
+  // It needs the ground truth of every frame.
+  const fs::path no_gt = out / "no_gt";
+  fs::copy(dataset(), no_gt, fs::copy_options::recursive);
+  fs::remove_all(no_gt / "gt");
+  EXPECT_EQ(run_simcap("track " + no_gt.string() + " -o " + (out / "x").string() +
+                           " --init auto --oracle --quiet",
+                       &log),
+            1);
+  EXPECT_NE(log.find("joints3d.csv: missing (needed by --oracle)"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(out / "x" / "joints3d.csv"));
+}
+
+// The thesis's configuration: his joint set, his traversal on every frame, his EKF.
+TEST(TrackJob, RunsMoschinisEkfOnHisJointSet) {
+  TempDir out;
+  std::string log;
+  ASSERT_EQ(run_track(out / "t", "--filter ekf --joints moschini --traversal on", &log), 0) << log;
+  EXPECT_LT(mpjpe_mm(dataset() / "gt" / "joints3d.csv", out / "t" / "joints3d.csv"), 60.0);
+}
+
+TEST(TrackJob, SubtractedSilhouettesAreScoredAgainstTheMasks) {
+  TempDir out;
+  std::string log;
+  ASSERT_EQ(run_track(out / "t", "--silhouettes bgsub", &log), 0) << log;
+  std::istringstream iou(read_text(out / "t" / "diagnostics" / "silhouette_iou.csv"));
+  std::string line;
+  std::getline(iou, line);
+  int rows = 0;
+  while (std::getline(iou, line)) {
+    ++rows;
+    // Limbs are a few pixels wide at 240 x 180; the clean-up morphology costs some IoU there.
+    EXPECT_GT(std::stod(line.substr(line.rfind(',') + 1)), 0.85) << line;
+  }
+  EXPECT_EQ(rows, 6 * 5);
+  EXPECT_LT(mpjpe_mm(dataset() / "gt" / "joints3d.csv", out / "t" / "joints3d.csv"), 60.0);
+}
+
+TEST(TrackJob, AutoInitializationFindsTheBody) {
+  TempDir out;
+  std::string log;
+  ASSERT_EQ(run_track(out / "t", "--init auto", &log), 0) << log;
+  EXPECT_LT(mpjpe_mm(dataset() / "gt" / "joints3d.csv", out / "t" / "joints3d.csv"), 80.0);
+}
+
+TEST(TrackJob, BadDatasetsGiveClearErrors) {
+  TempDir dir;
+  std::string log;
+  const std::string out = " -o " + (dir / "out").string();
+  // Not a dataset.
+  fs::create_directories(dir / "empty");
+  EXPECT_EQ(run_simcap("track " + (dir / "empty").string() + out, &log), 1);
+  EXPECT_NE(log.find("calibration/opencv.yaml: missing"), std::string::npos) << log;
+
+  auto copy = [&](const std::string& name) {
+    const fs::path d = dir / name;
+    fs::copy(dataset(), d, fs::copy_options::recursive);
+    return d;
+  };
+  // A camera folder missing.
+  const fs::path no_cam = copy("no_cam");
+  fs::remove_all(no_cam / "cam03");
+  EXPECT_EQ(run_simcap("track " + no_cam.string() + out, &log), 1);
+  EXPECT_NE(log.find("cam03: missing"), std::string::npos) << log;
+  // A frame missing in one camera.
+  const fs::path gap = copy("gap");
+  fs::remove(gap / "cam02" / "mask" / "000003.png");
+  EXPECT_EQ(run_simcap("track " + gap.string() + out, &log), 1);
+  EXPECT_NE(log.find("000003.png is missing"), std::string::npos) << log;
+  // An image of the wrong size.
+  const fs::path small = copy("small");
+  fs::copy_file(dataset() / "cam00" / "mask" / "000000.png", small / "x.png");
+  {
+    cv::Mat tiny(10, 10, CV_8UC1, cv::Scalar(0));
+    write_image(small / "cam01" / "mask" / "000002.png", tiny);
+  }
+  EXPECT_EQ(run_simcap("track " + small.string() + out, &log), 1);
+  EXPECT_NE(log.find("image is 10x10"), std::string::npos) << log;
+  // --init gt without ground truth.
+  const fs::path no_gt = copy("no_gt");
+  fs::remove_all(no_gt / "gt");
+  EXPECT_EQ(run_simcap("track " + no_gt.string() + out, &log), 1);
+  EXPECT_NE(log.find("joints3d.csv: missing (needed by --init gt)"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir / "out" / "joints3d.csv"));
+  // Masks without colour images: --appearance (on by default with --init gt) says what to do.
+  const fs::path masks_only = copy("masks_only");
+  fs::remove_all(masks_only / "cam02" / "rgb");
+  EXPECT_EQ(run_simcap("track " + masks_only.string() + out, &log), 1);
+  EXPECT_NE(log.find("cam02/rgb: missing"), std::string::npos) << log;
+  EXPECT_NE(log.find("--appearance off"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir / "out" / "joints3d.csv"));
+  EXPECT_EQ(run_simcap("track " + masks_only.string() + out + " --appearance off --quiet", &log), 0)
+      << log;
+  // Unknown option values are refused by the command line.
+  EXPECT_NE(run_simcap("track " + dataset().string() + out + " --silhouettes magic", &log), 0);
+  EXPECT_NE(run_simcap("track " + dataset().string() + out + " --appearance maybe", &log), 0);
+  EXPECT_NE(run_simcap("track " + dataset().string() + out + " --filter kalman", &log), 0);
+  EXPECT_NE(run_simcap("track " + dataset().string() + out + " --traversal sometimes", &log), 0);
+}
+
+// The acceptance line of the speed goal: per-stage rows, every run's rate and the median last.
+TEST(BenchTrack, ReportsStagesRunsAndTheMedianRate) {
+  std::string log;
+  ASSERT_EQ(run_simcap("bench track " + dataset().string() + " --frames 4 --repeat 2", &log), 0)
+      << log;
+  for (const char* row : {"silhouettes (decode)", "visual hull", "centerline", "articulated ICP"})
+    EXPECT_NE(log.find(row), std::string::npos) << row << "\n" << log;
+  EXPECT_NE(log.find("EKF                           off"), std::string::npos) << log;
+  const size_t runs = log.find("frames/s per run:");
+  ASSERT_NE(runs, std::string::npos) << log;
+  std::istringstream rates(log.substr(runs + 17, log.find('\n', runs) - runs - 17));
+  std::vector<double> fps{std::istream_iterator<double>(rates), std::istream_iterator<double>()};
+  ASSERT_EQ(fps.size(), 2u) << log;
+  const size_t last = log.rfind("frames_per_s=");
+  ASSERT_NE(last, std::string::npos) << log;
+  EXPECT_EQ(log.find('\n', last), log.size() - 1) << "frames_per_s must be the last line";
+  EXPECT_NEAR(std::stod(log.substr(last + 13)), 0.5 * (fps[0] + fps[1]),
+              0.11);  // each printed to 0.1
+  EXPECT_NE(run_simcap("bench track " + dataset().string() + " --repeat 0", &log), 0);
+  EXPECT_NE(run_simcap("bench track " + dataset().string() + " --frames 0", &log), 0);
+}
+
+}  // namespace
+}  // namespace simcap

@@ -1,0 +1,89 @@
+#include <gtest/gtest.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "tests/support/temp_dir.h"
+#include "tests/tracker/capsule_dataset.h"
+#include "tracker/common/track_folder.h"
+#include "tracker/registry.h"
+
+namespace simcap::tracker {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::run_simcap;
+using testing::TempDir;
+
+TEST(Registry, EveryMethodHasOneFamily) {
+  for (const auto& [name, method] : kTrackMethods) {
+    int families = 0;
+    for (const TrackerFamily& f : tracker_families()) families += f.method == method ? 1 : 0;
+    EXPECT_EQ(families, 1) << name;
+    EXPECT_FALSE(tracker_family(method).summary.empty()) << name;
+  }
+  EXPECT_EQ(tracker_families().size(), kTrackMethods.size());
+}
+
+TEST(Registry, RefusesADatasetTheMethodCannotUseBeforeWritingAnything) {
+  TempDir dir;
+  testing::write_capsule_dataset(dir / "one", {.frames = 2, .cameras = 1});
+  std::string log;
+  EXPECT_EQ(run_simcap("track " + (dir / "one").string() + " -o " + (dir / "t").string(), &log), 1);
+  EXPECT_NE(log.find("1 camera, needs at least 2 for --method moschini"), std::string::npos) << log;
+  EXPECT_NE(log.find("use --method sik instead"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir / "t"));
+
+  // What the check reads, directly: cameras, colour images, ground truth.
+  const Dataset one(dir / "one");
+  EXPECT_EQ(missing_for({.min_cameras = 2}, one), "1 camera, needs at least 2");
+  EXPECT_EQ(missing_for({.depth = true}, one), "no cam00/depth images");
+  EXPECT_EQ(missing_for({.colour = true, .ground_truth = true}, one), "");
+  fs::remove(dir / "one" / "gt" / "joints3d.csv");
+  EXPECT_EQ(missing_for({.ground_truth = true}, one), "no gt/joints3d.csv");
+}
+
+TEST(TrackFolder, ReplacesTheTrackOnlyWhenCommitted) {
+  TempDir dir;
+  const fs::path track = dir / "track";
+  write_text_atomic(track / "joints3d.csv", "old\n");
+  {
+    TrackFolder failed(track);
+    write_text_atomic(failed.path() / "joints3d.csv", "half\n");
+  }
+  EXPECT_EQ(read_text(track / "joints3d.csv"), "old\n");
+  EXPECT_FALSE(fs::exists(dir / "track.partial"));
+  {
+    TrackFolder run(track);
+    write_text_atomic(run.path() / "joints3d.csv", "new\n");
+    run.commit();
+  }
+  EXPECT_EQ(read_text(track / "joints3d.csv"), "new\n");
+  EXPECT_FALSE(fs::exists(dir / "track.partial"));
+  EXPECT_FALSE(fs::exists(dir / "track.old"));
+}
+
+TEST(TrackFolder, RefusesAFolderThatIsNotATrack) {
+  TempDir dir;
+  write_text_atomic(dir / "mine" / "notes.txt", "keep me\n");
+  EXPECT_THROW(TrackFolder(dir / "mine"), Error);
+  EXPECT_EQ(read_text(dir / "mine" / "notes.txt"), "keep me\n");
+  fs::create_directories(dir / "empty");
+  EXPECT_NO_THROW(TrackFolder(dir / "empty"));
+}
+
+// A run that fails after it started writing leaves no track folder behind.
+TEST(TrackFolder, AFailedTrackLeavesNothing) {
+  TempDir dir;
+  testing::write_capsule_dataset(dir / "ds", {.frames = 2, .cameras = 4});
+  std::string log;
+  EXPECT_EQ(run_simcap("track " + (dir / "ds").string() + " -o " + (dir / "t").string() +
+                           " --inspect 7 --quiet",
+                       &log),
+            1);
+  EXPECT_NE(log.find("--inspect: frame 7 is not in"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir / "t"));
+  EXPECT_FALSE(fs::exists(dir / "t.partial"));
+}
+
+}  // namespace
+}  // namespace simcap::tracker

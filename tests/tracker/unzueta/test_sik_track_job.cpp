@@ -1,0 +1,105 @@
+// `simcap track --method sik`'s back-end: sizes the humanoid from the truth, follows the truth's
+// end-effectors, is reproducible for a seed, and names what a bad dataset lacks.
+#include <gtest/gtest.h>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "models/humanoid.h"
+#include "models/motion_source.h"
+#include "tests/support/temp_dir.h"
+#include "tracker/unzueta/sik_track_job.h"
+
+namespace simcap {
+namespace {
+
+// gt/joints3d.csv of a humanoid of `height` walking for `seconds`, every non-site joint.
+JointTrack write_truth(const std::filesystem::path& dataset, double height, double seconds) {
+  BodyParameters body;
+  body.height = height;
+  const Skeleton skeleton = build_humanoid(body);
+  ProceduralSpec walk;
+  walk.duration_s = seconds;
+  const Motion motion = generate_procedural(walk, skeleton, 60.0);
+  JointTrack truth;
+  std::vector<int> joints;
+  for (int j = 0; j < skeleton.size(); ++j) {
+    if (skeleton[j].is_site) continue;
+    joints.push_back(j);
+    truth.joints.push_back(skeleton[j].name);
+  }
+  for (size_t f = 0; f < motion.frames.size(); ++f) {
+    const auto p = joint_positions(skeleton, motion.frames[f]);
+    std::vector<Eigen::Vector3d> row;
+    for (int j : joints) row.push_back(p[j]);
+    truth.add_frame(static_cast<int>(f), std::move(row));
+  }
+  write_joint_track(dataset / "gt" / "joints3d.csv", truth);
+  return truth;
+}
+
+TEST(SikTrackJob, SizesTheHumanoidFromTheTruth) {
+  testing::TempDir tmp;
+  const JointTrack truth = write_truth(tmp.path(), 1.62, 0.5);
+  const Skeleton fitted = sik_humanoid_for_track(truth);
+  BodyParameters body;
+  body.height = 1.62;
+  const Skeleton expected = build_humanoid(body);
+  ASSERT_EQ(fitted.size(), expected.size());
+  for (int j = 0; j < fitted.size(); ++j) {
+    EXPECT_LT((fitted[j].center - expected[j].center).norm(), 1e-6) << fitted[j].name;
+  }
+}
+
+TEST(SikTrackJob, FollowsTheEndEffectorsAndIsReproducible) {
+  testing::TempDir tmp;
+  const JointTrack truth = write_truth(tmp.path(), 1.75, 2.0);
+  SikTrackOptions options;
+  options.quiet = true;
+  track_dataset_sik(tmp.path(), tmp / "clean", options);
+  const JointTrack track = read_joint_track(tmp / "clean" / "joints3d.csv");
+  ASSERT_EQ(track.frames, truth.frames);
+  EXPECT_EQ(track.joints, he15_joints());
+  double wrist = 0.0, all = 0.0;
+  int n = 0;
+  for (size_t f = 0; f < track.frames.size(); ++f) {
+    for (size_t k = 0; k < track.joints.size(); ++k) {
+      const double e =
+          (track.positions[f][k] - truth.positions[f][truth.joint_index(track.joints[k])]).norm();
+      all += e;
+      if (track.joints[k] == "l_radiocarpal" || track.joints[k] == "r_radiocarpal") wrist += e;
+    }
+    ++n;
+  }
+  EXPECT_LT(wrist / (2 * n), 0.005);  // the wrists are targets
+  EXPECT_LT(all / (15 * n), 0.05);    // the rest is SIK's reconstruction
+  EXPECT_TRUE(std::filesystem::exists(tmp / "clean" / "diagnostics" / "sik_humanoid.csv"));
+
+  options.noise_sigma_m = 0.02;
+  track_dataset_sik(tmp.path(), tmp / "a", options);
+  track_dataset_sik(tmp.path(), tmp / "b", options);
+  options.seed = 2;
+  track_dataset_sik(tmp.path(), tmp / "c", options);
+  const std::string a = read_text(tmp / "a" / "joints3d.csv");
+  EXPECT_EQ(a, read_text(tmp / "b" / "joints3d.csv"));
+  EXPECT_NE(a, read_text(tmp / "c" / "joints3d.csv"));
+  EXPECT_NE(a, read_text(tmp / "clean" / "joints3d.csv"));
+}
+
+TEST(SikTrackJob, NamesAMissingEndEffector) {
+  testing::TempDir tmp;
+  JointTrack truth;
+  truth.joints = {"humanoid_root", "skullbase", "l_radiocarpal", "r_radiocarpal", "l_talocrural"};
+  truth.add_frame(0, std::vector<Eigen::Vector3d>(5, Eigen::Vector3d::Zero()));
+  write_joint_track(tmp / "gt" / "joints3d.csv", truth);
+  try {
+    track_dataset_sik(tmp.path(), tmp / "out", {});
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("r_talocrural"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("joints3d.csv"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(tmp / "out" / "joints3d.csv"));
+}
+
+}  // namespace
+}  // namespace simcap

@@ -1,0 +1,77 @@
+#include "tracker/moschini/auto_start.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "tracker/moschini/body_surface.h"
+#include "tracker/moschini/pose_init.h"
+
+namespace simcap::tracker {
+namespace {
+
+// The argument in [lo, hi] at which f is least, for f unimodal there (golden-section search
+// with `evaluations` calls of f).
+template <typename F>
+double least(F&& f, double lo, double hi, int evaluations) {
+  const double g = (std::sqrt(5.0) - 1) / 2;
+  double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+  double fa = f(a), fb = f(b);
+  for (int i = 2; i < evaluations; ++i) {
+    if (fa < fb) {
+      hi = b, b = a, fb = fa;
+      a = hi - g * (hi - lo), fa = f(a);
+    } else {
+      lo = a, a = b, fa = fb;
+      b = lo + g * (hi - lo), fb = f(b);
+    }
+  }
+  return fa < fb ? a : b;
+}
+
+}  // namespace
+
+AutoStart auto_start(const std::vector<Observation>& first, const TrackerOptions& options,
+                     const AutoStartOptions& search) {
+  std::vector<double> tops;
+  for (const Observation& obs : first) {
+    if (obs.hull.count > 0) tops.push_back(upright_cue(obs.hull, {}).top_y);
+  }
+  if (tops.empty()) throw Error("--init auto found no body in the first frames' hulls");
+  std::nth_element(tops.begin(), tops.begin() + tops.size() / 2, tops.end());
+  const double height = tops[tops.size() / 2];
+  // From upright hypotheses with typical capsules the coarse sampling of the hypotheses' stage
+  // finds the arms less often: every ray and the final outline step here.
+  TrackerOptions fine = options;
+  fine.icp.refine.ray_every = options.polish.ray_every;
+  fine.icp.refine.rim_step_m = options.polish.rim_step_m;
+  auto dims_of = [&](double scale, double shoulders) {
+    BodyDimensions d = dimensions_from_height(scale * height);
+    d.d_s = shoulders;
+    return d;
+  };
+  BodyDimensions dims = dimensions_from_height(height);
+  MoschiniTracker finder(dims, typical_surface(dims), fine);
+  finder.start_upright(first.front());
+  const StickPose upright = finder.step(first.front()).pose;
+  // The cost of tracking the first frames from that pose with other proportions: the joint
+  // angles carry over, the sticks' lengths and the shoulders' height do not.
+  const int frames = std::min<int>(search.frames, static_cast<int>(first.size()));
+  auto cost = [&](const BodyDimensions& d) {
+    MoschiniTracker tracker(d, typical_surface(d), fine);
+    tracker.start(upright);
+    double total = 0;
+    for (int f = 0; f < frames; ++f) total += tracker.score(tracker.step(first[f]).pose, first[f]);
+    return total;
+  };
+  const double shoulders = least([&](double v) { return cost(dims_of(1.0, v)); },
+                                 search.shoulders_lo, search.shoulders_hi, search.evaluations);
+  const double scale = least([&](double s) { return cost(dims_of(s, shoulders)); }, search.scale_lo,
+                             search.scale_hi, search.evaluations);
+  dims = dims_of(scale, shoulders);
+  MoschiniTracker tracker(dims, typical_surface(dims), fine);
+  tracker.start(upright);
+  return {dims, tracker.step(first.front()).pose};
+}
+
+}  // namespace simcap::tracker

@@ -1,0 +1,32 @@
+// Where --init auto starts: the body's proportions and its first pose, from the first frames of
+// a person standing upright on the floor, with no ground truth.
+#pragma once
+
+#include <vector>
+
+#include "tracker/moschini/moschini_tracker.h"
+
+namespace simcap::tracker {
+
+struct AutoStart {
+  BodyDimensions dims;
+  StickPose pose;  // on the first frame
+};
+
+struct AutoStartOptions {
+  int frames = 3;  // the proportions are those that track the first frames at the least cost
+  // Searched ranges: the stature the hull's top gives is scaled by up to these factors (its top
+  // voxel lies below the head's top; a walking person stoops), and the shoulders' height above
+  // the torso's centroid (d_s, in its half-lengths: 0.89 in the neutral humanoid, 1.17 with
+  // CMU 131_01's raised clavicles).
+  double scale_lo = 0.95, scale_hi = 1.08;
+  double shoulders_lo = 0.75, shoulders_hi = 1.35;
+  int evaluations = 8;  // per golden-section search
+};
+
+// `first`: observations of the first frames (at least one with a body in its hull).
+// `options`: the tracker's; the search refines at its final refinement's sampling.
+AutoStart auto_start(const std::vector<Observation>& first, const TrackerOptions& options,
+                     const AutoStartOptions& search = {});
+
+}  // namespace simcap::tracker

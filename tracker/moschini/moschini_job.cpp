@@ -1,0 +1,255 @@
+#include "tracker/moschini/moschini_job.h"
+
+#include <tbb/parallel_pipeline.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <opencv2/core/utility.hpp>
+#include <optional>
+
+#include "core/csv.h"
+#include "core/error.h"
+#include "core/joint_track.h"
+#include "core/progress.h"
+#include "models/humanoid.h"
+#include "tracker/common/dataset.h"
+#include "tracker/moschini/auto_start.h"
+#include "tracker/moschini/inspection.h"
+#include "tracker/moschini/pose_init.h"
+#include "tracker/moschini/surface_fit.h"
+
+namespace simcap::tracker {
+namespace fs = std::filesystem;
+
+namespace {
+
+// The hull's working volume: the room from scene.yaml kept 10 cm off the walls and below
+// 2.3 m (no one is taller), else Moschini-sized defaults around the origin.
+Eigen::AlignedBox3d working_volume(const Dataset& ds) {
+  const auto room = ds.room();
+  if (!room) return HullOptions{}.volume;
+  Eigen::Vector3d lo = room->min(), hi = room->max();
+  lo.x() += 0.1, lo.z() += 0.1, hi.x() -= 0.1, hi.z() -= 0.1;
+  hi.y() = std::min(hi.y(), 2.3);
+  return {lo, hi};
+}
+
+// How many first frames --init auto measures the body on.
+constexpr int kStartFrames = 5;
+
+}  // namespace
+
+TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& options,
+                          int max_frames, const MoschiniSink& sink) {
+  const Dataset ds(dataset_path);
+  const SilhouetteMethod method = options.silhouettes;
+  PerceptionOptions popt;
+  popt.hull.voxel_m = options.voxel_m;
+  popt.hull.volume = working_volume(ds);
+  popt.colours = options.appearance;
+  Perception perception(ds, method, popt);
+  std::vector<int> frames = ds.frames(perception.silhouettes().image_kind());
+  if (popt.colours && perception.silhouettes().image_kind() != "rgb") {
+    const std::string hint =
+        " (--appearance reads a colour image with every mask; --appearance off tracks on the "
+        "masks alone)";
+    std::vector<int> colour;
+    try {
+      colour = ds.frames("rgb");
+    } catch (const Error& e) {
+      throw Error(std::string(e.what()) + hint);
+    }
+    if (colour != frames)
+      throw Error(dataset_path.string() + ": rgb and mask frames differ" + hint);
+  }
+  if (max_frames >= 0 && static_cast<int>(frames.size()) > max_frames) frames.resize(max_frames);
+  for (const int f : options.inspect) {
+    if (std::find(frames.begin(), frames.end(), f) == frames.end()) {
+      throw Error("--inspect: frame " + std::to_string(f) + " is not in " + dataset_path.string() +
+                  (frames.empty() ? std::string(" (no frames)")
+                                  : " (frames " + std::to_string(frames.front()) + " to " +
+                                        std::to_string(frames.back()) + ")"));
+    }
+  }
+  const bool compare_masks =
+      method != SilhouetteMethod::gt && fs::is_directory(ds.root() / ds.cameras()[0].name / "mask");
+
+  TrackerOptions topt;
+  topt.joints = options.joints;
+  topt.use_filter = options.filter == MotionFilter::ekf;
+  topt.traversal = options.traversal;
+  std::optional<MoschiniTracker> tracker;
+  if (options.init == InitMethod::gt) {
+    // The first frame's joints give the sticks and the pose; its silhouettes the capsules, and
+    // where the hull's centerline runs relative to the trunk's and head's joint lines.
+    const JointTrack gt = ds.ground_truth("--init gt");
+    const std::string source = ds.ground_truth_path().string();
+    const NamedJoints joints = joints_at(gt, frames.front(), source);
+    BodyDimensions dims = dimensions_from_joints(joints, source);
+    const StickModel plain(dims, topt.joints);
+    const StickPose start = pose_from_joints(plain, joints, source);
+    const Observation first = perception.observe(frames.front());
+    dims.centerline_offset = measure_centerline_offsets(plain, start, first.points);
+    const BodySurface surface =
+        fit_surface(plain, start, typical_surface(dims), first.rays, first.views);
+    if (popt.colours) perception.set_appearance({plain, surface, start, first.rays});
+    tracker.emplace(dims, surface, topt);
+    tracker->start(start);
+  } else {
+    // Assumption: in the first frames the person stands upright on the floor (auto_start.h).
+    std::vector<Observation> first;
+    for (int i = 0; i < std::min<int>(kStartFrames, static_cast<int>(frames.size())); ++i) {
+      first.push_back(perception.observe(frames[i]));
+    }
+    AutoStart start;
+    try {
+      start = auto_start(first, topt);
+    } catch (const Error& e) {
+      throw Error(dataset_path.string() + ": " + e.what());
+    }
+    // The capsules are fitted to the first pose; the tracker restarts with them.
+    const StickModel model(start.dims, topt.joints);
+    const BodySurface surface = fit_surface(model, start.pose, typical_surface(start.dims),
+                                            first.front().rays, first.front().views);
+    if (popt.colours) perception.set_appearance({model, surface, start.pose, first.front().rays});
+    tracker.emplace(start.dims, surface, topt);
+    tracker->start(start.pose);
+  }
+
+  // Frames are observed in parallel; OpenCV's own worker threads inside each would only compete
+  // for the same cores.
+  const int opencv_threads = cv::getNumThreads();
+  cv::setNumThreads(1);
+  struct RestoreThreads {
+    int n;
+    ~RestoreThreads() { cv::setNumThreads(n); }
+  } restore{opencv_threads};
+  std::optional<JointTrack> truth;
+  if (options.oracle) truth = ds.ground_truth("--oracle");
+  Progress progress("track", static_cast<long>(frames.size()), options.quiet);
+  const auto t0 = std::chrono::steady_clock::now();
+  size_t next = 0;
+  tbb::parallel_pipeline(
+      8, tbb::make_filter<void, int>(tbb::filter_mode::serial_in_order,
+                                     [&](tbb::flow_control& fc) {
+                                       if (next >= frames.size()) {
+                                         fc.stop();
+                                         return 0;
+                                       }
+                                       return frames[next++];
+                                     }) &
+             tbb::make_filter<int, std::shared_ptr<Observation>>(
+                 tbb::filter_mode::parallel,
+                 [&](int frame) {
+                   return std::make_shared<Observation>(perception.observe(frame, compare_masks));
+                 }) &
+             tbb::make_filter<std::shared_ptr<Observation>, void>(
+                 tbb::filter_mode::serial_in_order, [&](const std::shared_ptr<Observation>& obs) {
+                   if (truth) {
+                     const std::string source = ds.ground_truth_path().string();
+                     tracker->start(pose_from_joints(
+                         tracker->model(), joints_at(*truth, obs->frame, source), source));
+                   }
+                   const TrackStep step = tracker->step(*obs);
+                   sink(ds, *obs, step, *tracker);
+                   progress.advance();
+                 }));
+  progress.finish();
+  TrackSummary summary;
+  summary.frames = static_cast<int>(frames.size());
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  summary.reinitializations = tracker->reinitializations();
+  return summary;
+}
+
+TrackSummary track_moschini(const fs::path& dataset, const fs::path& out,
+                            const MoschiniOptions& options) {
+  if (!(options.voxel_m > 0)) throw Error("--voxel: must be positive");
+  const fs::path diag = out / "diagnostics";
+  fs::create_directories(diag);
+  JointTrack track;
+  track.joints = he15_joints();
+  CsvWriter centerline(diag / "centerline.csv", {"frame", "axis", "x", "y", "z", "voxels"});
+  CsvWriter timings(diag / "timings.csv",
+                    {"frame", "silhouettes_ms", "hull_ms", "centerline_ms", "icp_ms", "filter_ms",
+                     "voxels", "points", "icp_residual_mm", "inlier_fraction", "outside_fraction"});
+  CsvWriter reinit(diag / "reinitializations.csv", {"frame", "reason"});
+  std::optional<CsvWriter> iou;
+  std::optional<BodyDimensions> dims;
+  std::optional<BodySurface> surface;
+  char buf[256];
+  const TrackSummary run = run_moschini(
+      dataset, options, -1,
+      [&](const Dataset& ds, const Observation& obs, const TrackStep& step,
+          const MoschiniTracker& tracker) {
+        if (!dims) dims = tracker.model().dimensions(), surface = tracker.surface();
+        track.add_frame(obs.frame, tracker.model().he15(step.pose));
+        for (const CenterlinePoint& p : obs.centerline) {
+          std::snprintf(buf, sizeof buf, "%d,%c,%.4f,%.4f,%.4f,%d\n", obs.frame, "xyz"[p.axis],
+                        p.position.x(), p.position.y(), p.position.z(), p.voxels);
+          centerline.out() << buf;
+        }
+        std::snprintf(buf, sizeof buf, "%d,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%zu,%.1f,%.3f,%.3f\n",
+                      obs.frame, obs.silhouettes_ms, obs.hull_ms, obs.centerline_ms, step.icp_ms,
+                      step.filter_ms, obs.hull.count, obs.points.size(),
+                      step.icp.mean_distance_m * 1000, step.icp.inlier_fraction,
+                      step.outside_fraction);
+        timings.out() << buf;
+        if (step.reinitialized) reinit.out() << obs.frame << "," << step.reason << "\n";
+        if (std::find(options.inspect.begin(), options.inspect.end(), obs.frame) !=
+            options.inspect.end()) {
+          std::snprintf(buf, sizeof buf, "%06d", obs.frame);
+          write_inspection(diag / "inspect" / buf, ds, obs, tracker, step.pose);
+        }
+        if (!obs.silhouette_iou.empty()) {
+          if (!iou)
+            iou.emplace(diag / "silhouette_iou.csv",
+                        std::vector<std::string>{"frame", "camera", "iou"});
+          for (size_t c = 0; c < obs.silhouette_iou.size(); ++c) {
+            std::snprintf(buf, sizeof buf, "%d,%zu,%.4f\n", obs.frame, c, obs.silhouette_iou[c]);
+            iou->out() << buf;
+          }
+        }
+      });
+  CsvWriter body(diag / "body_dimensions.csv", {"dimension", "value"});
+  const std::pair<const char*, double> values[] = {
+      {"torso_half", dims->torso_half},
+      {"spine_pivot", dims->spine_pivot},
+      {"shoulder_half", dims->shoulder_half},
+      {"d_s", dims->d_s},
+      {"d_h", dims->d_h},
+      {"head", dims->head},
+      {"upper_arm", dims->upper_arm},
+      {"forearm", dims->forearm},
+      {"hand", dims->hand},
+      {"thigh", dims->thigh},
+      {"calf", dims->calf},
+      {"foot", dims->foot},
+      {"foot_pitch", dims->foot_pitch},
+      {"root_above_hips", dims->root_above_hips},
+      {"root_forward", dims->root_forward},
+      {"skullbase_fraction", dims->skullbase_fraction}};
+  for (const auto& [name, value] : values) {
+    std::snprintf(buf, sizeof buf, "%s,%.5f\n", name, value);
+    body.out() << buf;
+  }
+  for (int c = 0; c < kCapsuleCount; ++c) {
+    const std::string name(capsule_name(c));
+    for (const auto& [end, radius] : {std::pair{"a", (*surface)[c].ra}, {"b", (*surface)[c].rb}}) {
+      std::snprintf(buf, sizeof buf, "capsule_%s_radius_%s,%.5f\n", name.c_str(), end, radius);
+      body.out() << buf;
+    }
+  }
+  body.commit();
+  centerline.commit();
+  timings.commit();
+  reinit.commit();
+  if (iou) iou->commit();
+  write_joint_track(out / "joints3d.csv", track);
+  TrackSummary summary = run;
+  summary.track = out;
+  return summary;
+}
+
+}  // namespace simcap::tracker

@@ -1,0 +1,255 @@
+#include "tracker/moschini/moschini_tracker.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <span>
+
+#include "core/error.h"
+
+namespace simcap::tracker {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+MoschiniTracker::MoschiniTracker(const BodyDimensions& dims, const BodySurface& surface,
+                                 const TrackerOptions& options)
+    : model_(dims, options.joints),
+      surface_(surface),
+      options_(options),
+      icp_(model_, surface, options.icp),
+      refiner_(model_, surface, options.icp.refine),
+      polisher_(model_, surface, options.polish),
+      filter_(model_, options.filter) {}
+
+IcpTargets MoschiniTracker::targets_of(const Observation& obs) {
+  IcpTargets t;
+  t.points = obs.points;
+  t.hull = &obs.hull;
+  t.rays = obs.rays;
+  t.views = &obs.views;
+  return t;
+}
+
+void MoschiniTracker::start(const StickPose& pose) {
+  pose_ = pose;
+  filter_.reset(pose);
+  started_ = true;
+  lost_streak_ = 0;
+  patience_ = options_.recovery.lost_frames;
+}
+
+double MoschiniTracker::outside_fraction(const StickPose& pose, const Occupancy& hull) const {
+  if (hull.count == 0) return 1.0;
+  const StickGeometry g = model_.geometry(pose);
+  const double step = hull.grid.voxel;
+  int total = 0, outside = 0;
+  for (int s = 0; s < kSegmentCount; ++s) {
+    const Eigen::Vector3d ab = g.distal[s] - g.proximal[s];
+    const int n = std::max(1, static_cast<int>(ab.norm() / step));
+    for (int i = 0; i <= n; ++i) {
+      ++total;
+      if (!hull.occupied_near(g.proximal[s] + ab * (static_cast<double>(i) / n), 1)) ++outside;
+    }
+  }
+  return static_cast<double>(outside) / total;
+}
+
+double MoschiniTracker::score(const StickPose& pose, const Observation& obs) const {
+  return refiner_.cost(targets_of(obs), pose);
+}
+
+void MoschiniTracker::diagnose(const StickPose& pose, const Observation& obs,
+                               TrackStep& out) const {
+  out.icp = icp_.evaluate(obs.points, pose);
+  out.outside_fraction = outside_fraction(pose, obs.hull);
+}
+
+StickPose MoschiniTracker::best_upright(const Observation& obs, const StickPose* current) const {
+  const IcpTargets targets = targets_of(obs);
+  struct Fit {
+    double score;
+    StickPose pose;
+  };
+  std::vector<Fit> fits;
+  for (StickPose& c : upright_hypotheses(model_, upright_cue(obs.hull, model_.dimensions()),
+                                         options_.recovery.headings)) {
+    icp_.fit(targets, c);
+    fits.push_back({score(c, obs), c});
+  }
+  std::stable_sort(fits.begin(), fits.end(),
+                   [](const Fit& a, const Fit& b) { return a.score < b.score; });
+  Fit best = current ? Fit{options_.recovery.margin * score(*current, obs), *current}
+                     : Fit{std::numeric_limits<double>::infinity(), {}};
+  for (size_t i = 0; i < fits.size(); ++i) {
+    if (static_cast<int>(i) < options_.recovery.searched) {
+      search_limbs(targets, fits[i].pose);
+      fits[i].score = score(fits[i].pose, obs);
+    }
+    if (fits[i].score < best.score) best = fits[i];
+  }
+  return best.pose;
+}
+
+void MoschiniTracker::search_limbs(const IcpTargets& targets, StickPose& pose) const {
+  struct Limb {
+    std::array<int, 4> angles;  // -1: unused
+    double mirror;              // sign of the abduction and twist: 1 on the left, -1 on the right
+    bool arm;
+  };
+  static constexpr std::array<Limb, 4> limbs = {{
+      {{kLShoulder1, kLShoulder2, kLShoulder3, kLElbow}, 1.0, true},
+      {{kRShoulder1, kRShoulder2, kRShoulder3, kRElbow}, -1.0, true},
+      {{kLHip1, kLHip2, kLKnee, -1}, 1.0, false},
+      {{kRHip1, kRHip2, kRKnee, -1}, -1.0, false},
+  }};
+  // Left limbs' angles (abduction, flexion, twist, elbow; abduction, flexion, knee).
+  static constexpr std::array<std::array<double, 4>, 5> arms = {{{0.15, 0.0, 0.0, -0.2},
+                                                                 {0.2, -0.5, 0.3, -1.5},
+                                                                 {0.1, -0.3, 0.8, -1.8},
+                                                                 {0.2, 0.4, 0.0, -0.3},
+                                                                 {0.2, -1.2, 0.0, -0.5}}};
+  static constexpr std::array<std::array<double, 4>, 4> legs = {
+      {{0.0, 0.0, 0.0, 0.0}, {0.0, -0.4, 0.3, 0.0}, {0.0, 0.3, 0.2, 0.0}, {0.0, -0.2, 0.8, 0.0}}};
+  const auto& ranges = model_.ranges();
+  double best = refiner_.cost(targets, pose);
+  for (const Limb& limb : limbs) {
+    const StickPose base = pose;
+    const auto configurations = limb.arm ? std::span<const std::array<double, 4>>(arms)
+                                         : std::span<const std::array<double, 4>>(legs);
+    for (const auto& angles : configurations) {
+      StickPose trial = base;
+      for (int i = 0; i < 4 && limb.angles[i] >= 0; ++i) {
+        // Abduction (first) and an arm's twist (third) turn the other way on the right.
+        const double sign = i == 0 || (limb.arm && i == 2) ? limb.mirror : 1.0;
+        trial.theta[limb.angles[i]] = limit_angle(sign * angles[i], ranges[limb.angles[i]]);
+      }
+      refiner_.refine(targets, trial);
+      const double c = refiner_.cost(targets, trial);
+      if (c < best) best = c, pose = trial;
+    }
+  }
+}
+
+void MoschiniTracker::resolve_crossed_limbs(const IcpTargets& targets, StickPose& pose) const {
+  struct Pair {
+    std::array<int, 2> ends;                  // left distal reference points of the pair
+    std::vector<std::pair<int, int>> angles;  // left/right angles exchanged
+  };
+  const std::array<Pair, 2> pairs = {{
+      {{kLAnklePoint, kLKneePoint},
+       {{kLHip1, kRHip1},
+        {kLHip2, kRHip2},
+        {kLHipTwist, kRHipTwist},
+        {kLKnee, kRKnee},
+        {kLAnkle, kRAnkle}}},
+      {{kLHandTip, kLElbowPoint},
+       {{kLShoulder1, kRShoulder1},
+        {kLShoulder2, kRShoulder2},
+        {kLShoulder3, kRShoulder3},
+        {kLElbow, kRElbow},
+        {kLWristFlexion, kRWristFlexion},
+        {kLWristDeviation, kRWristDeviation}}},
+  }};
+  const double margin = 0.03;
+  const auto& ranges = model_.ranges();
+  for (const Pair& pair : pairs) {
+    const auto r = model_.reference_points(model_.geometry(pose));
+    // The right-side reference point always follows its left one in ReferencePoint.
+    auto lateral = [&](int i) { return pose.R0.col(0).dot(r[i] - pose.t0); };
+    const bool crossed = lateral(pair.ends[0]) < lateral(pair.ends[0] + 1) - margin ||
+                         lateral(pair.ends[1]) < lateral(pair.ends[1] + 1) - margin;
+    if (!crossed) continue;
+    StickPose swapped = pose;
+    for (const auto& [left, right] : pair.angles) {
+      if (right >= model_.angle_count()) continue;
+      std::swap(swapped.theta[left], swapped.theta[right]);
+      swapped.theta[left] = limit_angle(swapped.theta[left], ranges[left]);
+      swapped.theta[right] = limit_angle(swapped.theta[right], ranges[right]);
+    }
+    refiner_.refine(targets, swapped);
+    if (refiner_.cost(targets, swapped) < refiner_.cost(targets, pose)) pose = swapped;
+  }
+}
+
+void MoschiniTracker::start_upright(const Observation& obs) {
+  if (obs.points.empty()) {
+    throw Error(
+        "frame " + std::to_string(obs.frame) +
+        ": --init auto found no body in the hull (is the person inside the working volume?)");
+  }
+  start(best_upright(obs, nullptr));
+}
+
+TrackStep MoschiniTracker::step(const Observation& obs) {
+  if (!started_) throw Error("tracker: step() before start()");
+  using Clock = std::chrono::steady_clock;
+  TrackStep out;
+  auto t = Clock::now();
+  StickPose measured = pose_;
+  if (!obs.points.empty()) {
+    IcpTargets targets = targets_of(obs);
+    const StickPose prediction = pose_;
+    targets.prediction = &prediction;
+    // The joint refinement from the previous pose, which cannot be led astray by a limb whose
+    // centroids merged with another part's; with TrackerOptions::traversal also Moschini's
+    // traversal, which can jump to where the centerline now is.
+    if (options_.traversal) {
+      StickPose traversed = measured;
+      icp_.fit(targets, traversed);
+      refiner_.refine(targets, measured);
+      if (refiner_.cost(targets, traversed) < refiner_.cost(targets, measured))
+        measured = traversed;
+    } else {
+      refiner_.refine(targets, measured);
+    }
+    resolve_crossed_limbs(targets, measured);
+    polisher_.refine(targets, measured);
+    diagnose(measured, obs, out);
+    const RecoveryOptions& rec = options_.recovery;
+    char why[96] = "";
+    if (out.icp.mean_distance_m > rec.lost_distance_m) {
+      std::snprintf(why, sizeof why, "icp residual %.0f mm", out.icp.mean_distance_m * 1000);
+    } else if (out.outside_fraction > rec.lost_outside_fraction) {
+      std::snprintf(why, sizeof why, "%.0f%% of the model off the hull",
+                    out.outside_fraction * 100);
+    }
+    lost_streak_ = why[0] ? lost_streak_ + 1 : 0;
+    if (!why[0]) patience_ = rec.lost_frames;
+    if (lost_streak_ >= patience_) {
+      lost_streak_ = 0;
+      patience_ = std::min(2 * patience_, rec.max_lost_frames);
+      const StickPose found = best_upright(obs, &measured);
+      if (found.t0 != measured.t0 || found.R0 != measured.R0 || found.theta != measured.theta) {
+        out.reinitialized = true;
+        out.reason = why;
+        ++reinitializations_;
+        measured = found;
+        filter_.reset(found);
+        diagnose(measured, obs, out);
+      }
+    }
+  }
+  out.icp_ms = ms_since(t);
+  t = Clock::now();
+  if (!options_.use_filter || out.reinitialized) {
+    pose_ = measured;
+    if (options_.use_filter) filter_.reset(measured);
+  } else {
+    filter_.predict();
+    if (!obs.points.empty()) {
+      filter_.correct(model_.reference_points(model_.geometry(measured)));
+    }
+    pose_ = filter_.pose();
+  }
+  out.filter_ms = ms_since(t);
+  out.pose = pose_;
+  return out;
+}
+
+}  // namespace simcap::tracker

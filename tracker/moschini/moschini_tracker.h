@@ -1,0 +1,125 @@
+// Moschini's tracking loop (Alg. 3) on observed frames: articulated ICP from the previous pose,
+// a final refinement, then the EKF; detects lost tracking and re-initializes instead of drifting.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tracker/moschini/articulated_icp.h"
+#include "tracker/moschini/ekf.h"
+#include "tracker/moschini/perception.h"
+#include "tracker/moschini/pose_init.h"
+#include "tracker/moschini/stick_model.h"
+
+namespace simcap::tracker {
+
+// Lost tracking is declared when, for `lost_frames` frames in a row, the ICP residual exceeds
+// `lost_distance_m` or more than `lost_outside_fraction` of the model's sticks lie outside the
+// hull. The tracker then searches upright hypotheses (plus the current pose) and restarts the
+// filter from the best-scoring one.
+struct RecoveryOptions {
+  double lost_distance_m = 0.05;
+  double lost_outside_fraction = 0.25;
+  int lost_frames = 3;
+  // Each search makes the next wait twice as many lost frames in a row, up to this many, until a
+  // frame is tracked again: a search costs about a second, and on silhouettes too noisy to track
+  // one every three frames would make the tracker a hundred times slower for nothing.
+  int max_lost_frames = 48;
+  int headings = 12;  // upright hypotheses around the circle
+  int searched = 4;   // of them, the best fits whose limbs are searched (search_limbs)
+  // A recovered pose replaces the current fit only when it costs less than this fraction of
+  // it: on a hard frame a wrong pose can cost a little less than a right one.
+  double margin = 0.8;
+};
+
+struct TrackerOptions {
+  JointSet joints = JointSet::urdf;
+  // The hypotheses' refinements need only find the right basin: a quarter of the rays and a
+  // coarser outline.
+  IcpOptions icp = [] {
+    IcpOptions o;
+    o.refine.ray_every = 2;
+    o.refine.rim_step_m = 0.08;
+    return o;
+  }();
+  // The last refinement of each frame, once the hypotheses are decided: without the centerline
+  // points. They carry the hull's phantom volume (the centroid of a slice through two merged
+  // legs lies between them) and pull the fit off the body, yet they keep the search on it.
+  RefineOptions polish = [] {
+    RefineOptions o;
+    o.centerline_weight = 0;
+    o.iterations = 8;
+    return o;
+  }();
+  FilterNoise filter;
+  RecoveryOptions recovery;
+  bool use_filter = true;
+  // Each frame also tries Moschini's hierarchical traversal (Alg. 2) from the previous pose and
+  // keeps whichever fit costs less. Off, the joint refinement alone starts from the previous
+  // pose; the traversal then only serves recovery and --init auto (its jumps to where the
+  // centerline is lose more limbs than they find on simcap's datasets, see MOSCHINI.md).
+  bool traversal = false;
+};
+
+struct TrackStep {
+  StickPose pose;  // the estimate for this frame
+  IcpResult icp;
+  double outside_fraction = 0;  // of points sampled along the sticks, outside the hull
+  bool reinitialized = false;
+  std::string reason;  // why tracking was declared lost
+  double icp_ms = 0, filter_ms = 0;
+};
+
+class MoschiniTracker {
+ public:
+  MoschiniTracker(const BodyDimensions& dims, const BodySurface& surface,
+                  const TrackerOptions& options = {});
+  const StickModel& model() const { return model_; }
+  const BodySurface& surface() const { return surface_; }
+
+  // Starts from a known pose (--init gt).
+  void start(const StickPose& pose);
+  // Starts from the hull of a person standing upright (--init auto): the best of
+  // upright_hypotheses() after ICP.
+  void start_upright(const Observation& obs);
+
+  TrackStep step(const Observation& obs);
+  int reinitializations() const { return reinitializations_; }
+
+  // What ICP fits on this frame.
+  static IcpTargets targets_of(const Observation& obs);
+  // Lower is better: the joint refinement's cost (centerline, hull, silhouette rays and
+  // outlines, priors).
+  double score(const StickPose& pose, const Observation& obs) const;
+  // Fraction of points sampled every voxel along the sticks that lie off the hull.
+  double outside_fraction(const StickPose& pose, const Occupancy& hull) const;
+
+ private:
+  // The ICP residual and the fraction of the sticks off the hull: what lost tracking is judged by.
+  void diagnose(const StickPose& pose, const Observation& obs, TrackStep& out) const;
+  StickPose best_upright(const Observation& obs, const StickPose* current) const;
+  // For each limb in turn, restarts it from a few typical configurations (hanging, bent forward,
+  // across the body, back, raised) and keeps the refinement that scores best: far from the
+  // data, a limb's refinement stays in whatever basin it starts in.
+  void search_limbs(const IcpTargets& targets, StickPose& pose) const;
+  // When the fitted legs or arms cross (the left foot or knee, hand or elbow, right of the right
+  // one in the torso's frame), tries the pair exchanged and keeps whichever the hull and the
+  // centerline favour: walking legs pass close by each other, an arm held across the body meets
+  // the other, and the centerline points can then lead each limb onto the other's data.
+  void resolve_crossed_limbs(const IcpTargets& targets, StickPose& pose) const;
+
+  StickModel model_;
+  BodySurface surface_;
+  TrackerOptions options_;
+  ArticulatedIcp icp_;
+  PoseRefiner refiner_;
+  PoseRefiner polisher_;
+  PoseFilter filter_;
+  StickPose pose_;
+  bool started_ = false;
+  int lost_streak_ = 0;
+  int patience_ = 0;  // lost frames in a row that start a recovery search now
+  int reinitializations_ = 0;
+};
+
+}  // namespace simcap::tracker

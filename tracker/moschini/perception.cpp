@@ -1,0 +1,81 @@
+#include "tracker/moschini/perception.h"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+
+namespace simcap::tracker {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+Perception::Perception(const Dataset& dataset, SilhouetteMethod method,
+                       const PerceptionOptions& options)
+    : dataset_(&dataset),
+      options_(options),
+      silhouettes_(dataset, method, options.silhouettes),
+      hull_(dataset.cameras(), options.hull) {
+  const int stride = options_.ray_stride;
+  if (stride <= 0) return;
+  for (const Camera& cam : dataset.cameras()) {
+    std::vector<Eigen::Vector3f>& table = ray_directions_.emplace_back();
+    for (int v = stride / 2; v < cam.height; v += stride) {
+      for (int u = stride / 2; u < cam.width; u += stride) {
+        table.push_back(cam.unproject(Eigen::Vector2d(u, v)).cast<float>());
+      }
+    }
+  }
+}
+
+Observation Perception::observe(int frame, bool compare_masks) const {
+  using Clock = std::chrono::steady_clock;
+  Observation obs;
+  obs.frame = frame;
+  const int nc = dataset_->camera_count();
+  std::vector<cv::Mat> silhouettes(nc), colours(nc);
+  if (compare_masks) obs.silhouette_iou.assign(nc, 0.0);
+  auto t = Clock::now();
+  tbb::parallel_for(0, nc, [&](int c) {
+    silhouettes[c] = silhouettes_.extract(c, frame, options_.colours ? &colours[c] : nullptr);
+    if (compare_masks)
+      obs.silhouette_iou[c] = silhouette_iou(silhouettes[c], dataset_->mask(c, frame));
+  });
+  const int stride = options_.ray_stride;
+  for (int c = 0; stride > 0 && c < nc; ++c) {
+    const Camera& cam = dataset_->cameras()[c];
+    const Eigen::Vector3d origin = cam.centre();
+    size_t i = 0;
+    for (int v = stride / 2; v < cam.height; v += stride) {
+      const std::uint8_t* row = silhouettes[c].ptr<std::uint8_t>(v);
+      const cv::Vec3b* rgb = options_.colours ? colours[c].ptr<cv::Vec3b>(v) : nullptr;
+      for (int u = stride / 2; u < cam.width; u += stride, ++i) {
+        if (!row[u]) continue;
+        SilhouetteRay& ray =
+            obs.rays.emplace_back(origin, ray_directions_[c][i].cast<double>().normalized());
+        if (rgb) {
+          ray.colour = {rgb[u][0], rgb[u][1], rgb[u][2]};
+          ray.parts = appearance_.parts(ray.colour);
+        }
+      }
+    }
+  }
+  if (options_.views) {
+    for (int c = 0; c < nc; ++c) obs.views.emplace_back(dataset_->cameras()[c], silhouettes[c]);
+  }
+  obs.silhouettes_ms = ms_since(t);
+  t = Clock::now();
+  hull_.carve(silhouettes, obs.hull);
+  obs.hull_ms = ms_since(t);
+  t = Clock::now();
+  obs.centerline = centerline(obs.hull, options_.skeleton);
+  obs.points.reserve(obs.centerline.size());
+  for (const CenterlinePoint& p : obs.centerline) obs.points.push_back(p.position);
+  obs.centerline_ms = ms_since(t);
+  return obs;
+}
+
+}  // namespace simcap::tracker

@@ -1,0 +1,58 @@
+// The image-side stages of Moschini's pipeline for one frame: silhouettes, visual hull and
+// centerline points. Frames are independent here, so several can be observed at once.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "tracker/common/dataset.h"
+#include "tracker/common/silhouettes.h"
+#include "tracker/moschini/appearance.h"
+#include "tracker/moschini/articulated_icp.h"
+#include "tracker/moschini/skeletonize.h"
+#include "tracker/moschini/visual_hull.h"
+
+namespace simcap::tracker {
+
+struct PerceptionOptions {
+  HullOptions hull;
+  SkeletonOptions skeleton;
+  SilhouetteOptions silhouettes;
+  // Silhouette pixels on a grid of this many pixels become rays for the fit; 0 = none.
+  int ray_stride = 4;
+  bool views = true;     // nearest-silhouette-pixel maps for the fit
+  bool colours = false;  // rays carry their pixel's colour (the frame's RGB image is read)
+};
+
+struct Observation {
+  int frame = 0;
+  Occupancy hull;
+  std::vector<CenterlinePoint> centerline;
+  std::vector<Eigen::Vector3d> points;  // centerline positions, for ICP
+  std::vector<SilhouetteRay> rays;      // through silhouette pixels on the ray grid
+  std::vector<SilhouetteView> views;    // per camera, when PerceptionOptions::views
+  std::vector<double> silhouette_iou;   // per camera vs the dataset's masks, when asked for
+  double silhouettes_ms = 0, hull_ms = 0, centerline_ms = 0;
+};
+
+class Perception {
+ public:
+  Perception(const Dataset& dataset, SilhouetteMethod method, const PerceptionOptions& options);
+  // Thread-safe. With `compare_masks`, also scores the silhouettes against camNN/mask.
+  Observation observe(int frame, bool compare_masks = false) const;
+  const SilhouetteExtractor& silhouettes() const { return silhouettes_; }
+  // From now on, each ray lists the parts its colour may show (needs PerceptionOptions::colours).
+  void set_appearance(const AppearanceModel& appearance) { appearance_ = appearance; }
+
+ private:
+  const Dataset* dataset_;
+  PerceptionOptions options_;
+  SilhouetteExtractor silhouettes_;
+  VisualHull hull_;
+  AppearanceModel appearance_;
+  // Per camera, the world direction through every pixel of the ray grid (row-major), so that
+  // a frame's rays cost a lookup instead of an iterative undistortion each.
+  std::vector<std::vector<Eigen::Vector3f>> ray_directions_;
+};
+
+}  // namespace simcap::tracker

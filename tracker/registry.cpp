@@ -1,0 +1,115 @@
+#include "tracker/registry.h"
+
+#include <array>
+
+#include "core/error.h"
+#include "tracker/common/track_folder.h"
+
+namespace simcap::tracker {
+namespace fs = std::filesystem;
+
+namespace {
+
+TrackSummary run_moschini_family(const fs::path& dataset, const fs::path& out,
+                                 const TrackOptions& o) {
+  MoschiniOptions m = o.moschini;
+  m.init = o.init;
+  m.quiet = o.quiet;
+  return track_moschini(dataset, out, m);
+}
+
+TrackSummary run_sik_family(const fs::path& dataset, const fs::path& out, const TrackOptions& o) {
+  SikTrackOptions s = o.sik;
+  s.quiet = o.quiet;
+  return track_dataset_sik(dataset, out, s);
+}
+
+constexpr std::array kFamilies{
+    TrackerFamily{TrackMethod::moschini,
+                  "multi-camera: visual hull, centerline, articulated ICP (Moschini 2009)",
+                  [](const TrackOptions& o) {
+                    // A hull needs two views to bound depth; subtracted silhouettes need the
+                    // colour frames.
+                    DatasetNeeds n;
+                    n.min_cameras = 2;
+                    n.colour = o.moschini.silhouettes != SilhouetteMethod::gt;
+                    return n;
+                  },
+                  run_moschini_family},
+    TrackerFamily{TrackMethod::sik,
+                  "sequential inverse kinematics on the ground truth's end-effectors (Unzueta "
+                  "2009)",
+                  [](const TrackOptions&) {
+                    DatasetNeeds n;
+                    n.ground_truth = true;
+                    return n;
+                  },
+                  run_sik_family},
+};
+
+std::string method_name(TrackMethod m) {
+  return std::string(name_of(kTrackMethods, m));
+}
+
+}  // namespace
+
+std::span<const TrackerFamily> tracker_families() {
+  return kFamilies;
+}
+
+const TrackerFamily& tracker_family(TrackMethod method) {
+  for (const TrackerFamily& f : kFamilies) {
+    if (f.method == method) return f;
+  }
+  throw Error("--method: no tracker family '" + method_name(method) + "'");
+}
+
+std::string missing_for(const DatasetNeeds& needs, const Dataset& dataset) {
+  const int cameras = dataset.camera_count();
+  if (cameras < needs.min_cameras) {
+    return std::to_string(cameras) + (cameras == 1 ? " camera" : " cameras") + ", needs at least " +
+           std::to_string(needs.min_cameras);
+  }
+  for (const auto& [wanted, kind] : {std::pair{needs.colour, "rgb"}, {needs.depth, "depth"}}) {
+    if (!wanted) continue;
+    for (const Camera& cam : dataset.cameras()) {
+      if (!fs::is_directory(dataset.root() / cam.name / kind)) {
+        return "no " + cam.name + "/" + kind + " images";
+      }
+    }
+  }
+  if (needs.ground_truth && !fs::is_regular_file(dataset.ground_truth_path())) {
+    return "no gt/joints3d.csv";
+  }
+  return {};
+}
+
+TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
+                           const TrackOptions& options) {
+  const TrackerFamily& family = tracker_family(options.method);
+  {
+    const Dataset ds(dataset);
+    const std::string missing = missing_for(family.needs(options), ds);
+    if (!missing.empty()) {
+      std::string others;
+      for (const TrackerFamily& f : kFamilies) {
+        TrackOptions alternative = options;
+        alternative.method = f.method;
+        if (f.method != options.method && missing_for(f.needs(alternative), ds).empty()) {
+          others += (others.empty() ? "" : ", ") + ("--method " + method_name(f.method));
+        }
+      }
+      throw Error(dataset.string() + ": " + missing + " for --method " +
+                  method_name(options.method) + " (" + std::string(family.summary) + "); " +
+                  (others.empty() ? std::string("no tracker takes this dataset")
+                                  : "use " + others + " instead"));
+    }
+  }
+  TrackFolder folder(out);
+  TrackSummary summary = family.run(dataset, folder.path(), options);
+  folder.commit();
+  summary.track = out;
+  return summary;
+}
+
+}  // namespace simcap::tracker

@@ -1,0 +1,61 @@
+// The DLS baseline of Unzueta's Table 10 (§4.7.1, after Nakamura & Hanafusa; Wampler 1986): ball
+// joints as XYZ follower Euler angles, hinges, all end-effectors solved together per iteration.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "tracker/unzueta/ik_baseline_options.h"
+#include "tracker/unzueta/sik_body.h"
+#include "tracker/unzueta/sik_ik_solver.h"
+#include "tracker/unzueta/sik_limits.h"
+#include "tracker/unzueta/sik_pelvis.h"
+
+namespace simcap {
+
+struct DlsOptions : IkBaselineOptions {
+  // The damping factor lambda of  dq = J^T (J J^T + lambda^2 I)^-1 e  is a length. The thesis
+  // sets it "to 75" without a unit; read in centimetres, the unit its stopping rule is stated in
+  // (1 cm, 1 mm), that is 0.75 m, which damps the slow directions of a body-sized Jacobian
+  // (singular values of a few decimetres to a metre) as the thesis describes; in metres 75 would
+  // freeze the body and in millimetres (0.075 m) barely damp it.
+  double damping = 0.75;
+};
+
+class DlsSolver final : public IkSolver {
+ public:
+  explicit DlsSolver(SikBody body, DlsOptions options = {});
+  DlsSolver(const DlsSolver&) = delete;
+  DlsSolver& operator=(const DlsSolver&) = delete;
+
+  std::string_view name() const override { return "dls"; }
+  const SikBody& body() const override { return body_; }
+  const Pose& solve(const SikTargets& targets) override;
+  void reset() override;
+
+ private:
+  struct Dof {
+    int joint;
+    int axis;  // 0, 1, 2: X, Y, Z follower Euler angle; -1: the joint's hinge axis
+  };
+  void pose_from_angles();
+  // Places the root on the pelvis target, then moves it by half the head's error (thesis §4.2).
+  void place_root(const SikTargets& targets);
+  double largest_error(const SikTargets& targets) const;
+
+  DlsOptions options_;
+  SikBody body_;
+  SikLimits limits_;
+  SikPelvisEstimator pelvis_;
+  Pose pose_;
+  std::vector<Eigen::Quaterniond> rotation_;
+  std::vector<Eigen::Vector3d> position_;
+  std::vector<Dof> dofs_;
+  std::vector<int> ball_joints_, hinge_joints_;
+  Eigen::VectorXd angles_;                   // one per dof
+  std::vector<std::vector<int>> effectors_;  // per dof: indices (0..4) of effectors it moves
+  std::array<int, 5> effector_joint_{};      // head, wrists, ankles
+};
+
+}  // namespace simcap

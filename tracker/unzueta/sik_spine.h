@@ -1,0 +1,51 @@
+// SIK's spine (Unzueta 2009 §4.2, Alg. 8-9): bends or stretches the root-to-skullbase chain to the
+// pelvis-head distance, orients the pelvis and splits the residual between both ends.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "models/pose.h"
+#include "tracker/unzueta/sik_body.h"
+#include "tracker/unzueta/sik_limits.h"
+
+namespace simcap {
+
+class SikSpine {
+ public:
+  // `body` and `limits` must outlive the spine.
+  SikSpine(const SikBody& body, const SikLimits& limits);
+
+  // Sets the rotations of the spine joints and the root's rotation and position in `pose`:
+  // skullbase on the line from the pelvis target to the head target, the pelvis' X axis as close
+  // to `pelvis_frame`'s as that allows, the length mismatch split evenly between both ends.
+  void solve(const SikTargets& targets, const Eigen::Matrix3d& pelvis_frame, bool limits,
+             Pose& pose);
+  // Forgets the previous frame (the bend that the next search starts from).
+  void reset();
+
+ private:
+  // The spine shape for root bend `phi_root` (thesis eqs. 8-9) written into `rotations`
+  // (indexed like spine()), and the root-to-skullbase vector it gives with the root unrotated
+  // in the world.
+  Eigen::Vector3d bent(double phi_root, std::vector<Eigen::Quaterniond>& rotations) const;
+  Eigen::Vector3d head_offset(const std::vector<Eigen::Quaterniond>& rotations) const;
+  double search_bend(double target_length);
+
+  const SikBody& body_;
+  const SikLimits& limits_;
+  std::vector<int> chain_;  // spine joints, root first
+  double neutral_length_ = 0.0;
+  double min_phi_root_ = 0.0;  // most flexed root angle the joint limits allow
+  // Stretching postures (thesis: "precomputed stretching poses"): fractions 0..1 of the way
+  // from neutral to every segment on the neutral root-head line, with their lengths.
+  std::vector<std::vector<Eigen::Quaterniond>> stretch_;
+  std::vector<double> stretch_length_;
+
+  double phi_root_ = 0.0;  // current bend of the root (<= 0: flexion); the others bend -2phi/m
+  int stretch_index_ = 0;  // current stretching posture (0 = neutral)
+  double current_length_ = 0.0;
+  std::vector<Eigen::Quaterniond> shape_;  // scratch
+};
+
+}  // namespace simcap

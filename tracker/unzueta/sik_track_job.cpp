@@ -1,0 +1,173 @@
+#include "tracker/unzueta/sik_track_job.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "core/csv.h"
+#include "core/error.h"
+#include "core/progress.h"
+#include "models/body_mesh.h"
+#include "models/humanoid.h"
+#include "tracker/unzueta/sik.h"
+
+namespace simcap {
+namespace {
+
+// Mean distance between two tracked joints over the frames that have both; NaN when none.
+double mean_distance(const JointTrack& truth, int a, int b) {
+  double sum = 0.0;
+  int n = 0;
+  for (const auto& frame : truth.positions) {
+    const double d = (frame[a] - frame[b]).norm();
+    if (std::isfinite(d)) {
+      sum += d;
+      ++n;
+    }
+  }
+  return n ? sum / n : NAN;
+}
+
+Skeleton humanoid_of_height(double height) {
+  BodyParameters body;
+  body.height = height;
+  return build_humanoid(body);
+}
+
+}  // namespace
+
+Skeleton sik_humanoid_for_track(const JointTrack& truth) {
+  const Skeleton unit = humanoid_of_height(1.0);
+  // Each tracked joint with a tracked ancestor sizes the bones between them.
+  struct Sized {
+    int joint, anchor;  // in the skeleton
+    double length;      // in the truth
+  };
+  std::vector<Sized> sized;
+  std::vector<double> heights;
+  for (int j = 1; j < unit.size(); ++j) {
+    const int tj = truth.joint_index(unit[j].name);
+    if (tj < 0) continue;
+    int anchor = unit[j].parent;
+    while (anchor >= 0 && truth.joint_index(unit[anchor].name) < 0) anchor = unit[anchor].parent;
+    if (anchor < 0) continue;
+    const double d = mean_distance(truth, tj, truth.joint_index(unit[anchor].name));
+    const double neutral = (unit[j].center - unit[anchor].center).norm();
+    if (!std::isfinite(d) || neutral < 1e-9) continue;
+    sized.push_back({j, anchor, d});
+    heights.push_back(d / neutral);
+  }
+  if (heights.empty()) {
+    throw Error("the truth tracks no two joints that size the humanoid (e.g. l_hip and l_knee)");
+  }
+  std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
+  const Skeleton base = humanoid_of_height(heights[heights.size() / 2]);
+
+  // Bones on the way from an anchor to its joint take the joint's factor, unless a joint listed
+  // earlier (nearer the root) already sized them.
+  std::vector<double> scale(base.size(), NAN);
+  for (const Sized& s : sized) {
+    const double factor = s.length / (base[s.joint].center - base[s.anchor].center).norm();
+    for (int j = s.joint; j != s.anchor; j = base[j].parent) {
+      if (std::isnan(scale[j])) scale[j] = factor;
+    }
+  }
+  Skeleton fitted;
+  std::vector<Eigen::Vector3d> centre(base.size());
+  for (int j = 0; j < base.size(); ++j) {
+    Joint joint = base[j];
+    const double k = std::isnan(scale[j]) ? 1.0 : scale[j];
+    centre[j] = joint.parent < 0 ? joint.center
+                                 : Eigen::Vector3d(centre[joint.parent] + k * base.offset(j));
+    joint.center = centre[j];
+    fitted.add(std::move(joint));
+  }
+  return fitted;
+}
+
+TrackSummary track_dataset_sik(const std::filesystem::path& dataset,
+                               const std::filesystem::path& out, const SikTrackOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::filesystem::path gt = dataset / "gt" / "joints3d.csv";
+  if (!(options.noise_sigma_m >= 0.0)) throw Error("SIK noise sigma must be >= 0");
+  const JointTrack truth = read_joint_track(gt);
+  auto need = [&](const std::string& name) {
+    const int i = truth.joint_index(name);
+    if (i < 0) throw_input_error(gt, 0, "joint", "SIK needs the joint '" + name + "'");
+    return i;
+  };
+  const int pelvis = need("humanoid_root");
+  const int skullbase = truth.joint_index("skullbase");
+  const int head = skullbase >= 0 ? skullbase : truth.joint_index("skull_tip");
+  if (head < 0) throw_input_error(gt, 0, "joint", "SIK needs the joint 'skullbase' or 'skull_tip'");
+  const std::array<int, 2> wrist = {need("l_radiocarpal"), need("r_radiocarpal")};
+  const std::array<int, 2> ankle = {need("l_talocrural"), need("r_talocrural")};
+
+  const Skeleton skeleton = sik_humanoid_for_track(truth);
+  // A skull_tip target stands in for skullbase one neutral head height below it.
+  const double head_drop = skullbase >= 0 ? 0.0
+                                          : (skeleton[skeleton.require("skull_tip")].center -
+                                             skeleton[skeleton.require("skullbase")].center)
+                                                .norm();
+  SikSolver solver(SikBody(skeleton), build_body_mesh(skeleton));
+  const SikBody& body = solver.body();
+
+  std::vector<int> output_joints;
+  JointTrack track;
+  for (const std::string& name : he15_joints()) {
+    output_joints.push_back(skeleton.require(name));
+    track.joints.push_back(name);
+  }
+  std::mt19937_64 rng(options.seed);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  auto noisy = [&](Eigen::Vector3d p) {
+    if (options.noise_sigma_m > 0.0) {
+      for (int i = 0; i < 3; ++i) p[i] += options.noise_sigma_m * gauss(rng);
+    }
+    return p;
+  };
+
+  Progress progress("sik", static_cast<long>(truth.frames.size()), options.quiet);
+  std::vector<Eigen::Quaterniond> rotation;
+  std::vector<Eigen::Vector3d> position;
+  for (size_t f = 0; f < truth.frames.size(); ++f) {
+    const auto& p = truth.positions[f];
+    progress.advance();
+    const std::array<int, 6> used = {pelvis, head, wrist[0], wrist[1], ankle[0], ankle[1]};
+    const bool complete =
+        std::all_of(used.begin(), used.end(), [&](int j) { return p[j].allFinite(); });
+    if (!complete) continue;
+    SikTargets targets;
+    targets.pelvis = noisy(p[pelvis]);
+    targets.head = noisy(p[head]);
+    for (int side : {kLeft, kRight}) targets.wrist[side] = noisy(p[wrist[side]]);
+    for (int side : {kLeft, kRight}) targets.ankle[side] = noisy(p[ankle[side]]);
+    if (head_drop > 0.0) {
+      targets.head -= head_drop * (targets.head - targets.pelvis).normalized();
+    }
+    body.forward(solver.solve(targets), rotation, position);
+    std::vector<Eigen::Vector3d> row;
+    for (int j : output_joints) row.push_back(position[j]);
+    track.add_frame(truth.frames[f], std::move(row));
+  }
+  progress.finish();
+
+  CsvWriter neutral(out / "diagnostics" / "sik_humanoid.csv", {"joint", "x", "y", "z"});
+  char line[160];
+  for (const Joint& j : skeleton.joints()) {
+    std::snprintf(line, sizeof line, "%s,%.7f,%.7f,%.7f\n", j.name.c_str(), j.center.x(),
+                  j.center.y(), j.center.z());
+    neutral.out() << line;
+  }
+  neutral.commit();
+  write_joint_track(out / "joints3d.csv", track);
+  TrackSummary summary;
+  summary.frames = static_cast<int>(track.frames.size());
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  summary.track = out;
+  return summary;
+}
+
+}  // namespace simcap
