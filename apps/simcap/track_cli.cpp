@@ -12,7 +12,7 @@ namespace simcap::cli {
 namespace {
 
 // Sweep keys and the options they set (sweep files name the voxel and noise with their unit).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 10> kSweepKeys{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 11> kSweepKeys{{
     {"method", "--method"},
     {"silhouettes", "--silhouettes"},
     {"init", "--init"},
@@ -20,6 +20,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 10> kSweepKe
     {"filter", "--filter"},
     {"joints", "--joints"},
     {"traversal", "--traversal"},
+    {"occlusion", "--occlusion"},
     {"voxel_m", "--voxel"},
     {"sik_noise_m", "--sik-noise"},
     {"seed", "--seed"},
@@ -61,6 +62,9 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
   add_choice(cmd, "--traversal", o.moschini.traversal, kOnOff,
              "moschini: on (each frame also tries Moschini's hierarchical ICP traversal and keeps "
              "the better fit) or off (the joint refinement from the previous pose)");
+  add_choice(cmd, "--occlusion", o.moschini.occlusion, kOnOff,
+             "moschini: on (learn where scene objects hide the person from a camera, which then "
+             "abstains there from carving the hull) or off (every camera carves everywhere)");
   cmd->add_flag("--oracle", o.moschini.oracle,
                 "moschini: start every frame from its ground-truth pose (a diagnostic: the error "
                 "left is the body model's and the cues', not the search's)");

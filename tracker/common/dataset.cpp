@@ -126,6 +126,10 @@ cv::Mat Dataset::background(int camera) const {
   return read(root_ / "background" / (cameras_.at(camera).name + ".png"), camera, cv::IMREAD_COLOR);
 }
 
+bool Dataset::has_background(int camera) const {
+  return fs::is_regular_file(root_ / "background" / (cameras_.at(camera).name + ".png"));
+}
+
 JointTrack Dataset::ground_truth(const std::string& needed_by) const {
   const fs::path path = ground_truth_path();
   if (!fs::is_regular_file(path))

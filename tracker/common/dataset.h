@@ -35,6 +35,8 @@ class Dataset {
   // Colour frame, CV_8UC3 in the decoder's channel order (the same for rgb() and background()).
   cv::Mat rgb(int camera, int frame) const;
   cv::Mat background(int camera) const;
+  // Whether the dataset has the camera's empty-room plate (background/camNN.png).
+  bool has_background(int camera) const;
 
   std::filesystem::path ground_truth_path() const { return root_ / "gt" / "joints3d.csv"; }
   // gt/joints3d.csv; throws Error naming the file when it is missing, saying what needs it.

@@ -80,6 +80,14 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
   topt.use_filter = options.filter == MotionFilter::ekf;
   topt.traversal = options.traversal;
   std::optional<MoschiniTracker> tracker;
+  // Where scene objects hide the person, learned as tracking goes (occlusion_map.h).
+  std::optional<OcclusionMap> occlusion;
+  if (options.occlusion) {
+    std::vector<cv::Mat> plates;
+    for (int c = 0; c < ds.camera_count(); ++c)
+      plates.push_back(ds.has_background(c) ? ds.background(c) : cv::Mat());
+    occlusion.emplace(ds.cameras(), plates);
+  }
   if (options.init == InitMethod::gt) {
     // The first frame's joints give the sticks and the pose; its silhouettes the capsules, and
     // where the hull's centerline runs relative to the trunk's and head's joint lines.
@@ -89,7 +97,12 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
     BodyDimensions dims = dimensions_from_joints(joints, source);
     const StickModel plain(dims, topt.joints);
     const StickPose start = pose_from_joints(plain, joints, source);
-    const Observation first = perception.observe(frames.front());
+    Observation first = perception.observe(frames.front());
+    if (occlusion) {
+      // The true pose tells at once which parts the first frame hides from a camera.
+      occlusion->observe(place(typical_surface(dims), plain.geometry(start)), first.silhouettes);
+      perception.widen(first, *occlusion);
+    }
     dims.centerline_offset = measure_centerline_offsets(plain, start, first.points);
     const BodySurface surface =
         fit_surface(plain, start, typical_surface(dims), first.rays, first.views);
@@ -151,7 +164,13 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
                      tracker->start(pose_from_joints(
                          tracker->model(), joints_at(*truth, obs->frame, source), source));
                    }
+                   if (occlusion) perception.widen(*obs, *occlusion);
                    const TrackStep step = tracker->step(*obs);
+                   if (occlusion) {
+                     occlusion->observe(
+                         place(tracker->surface(), tracker->model().geometry(step.pose)),
+                         obs->silhouettes);
+                   }
                    sink(ds, *obs, step, *tracker);
                    progress.advance();
                  }));

@@ -37,6 +37,9 @@ struct MoschiniOptions {
   // Off: each frame's fit starts from the previous pose; on: Moschini's hierarchical ICP
   // traversal is tried too and the lower refinement cost wins.
   bool traversal = false;
+  // Learn where scene objects hide the person from a camera, which then abstains there from
+  // carving the hull and from the outline cues (occlusion_map.h).
+  bool occlusion = true;
   // Every frame starts from its ground-truth pose instead of the previous estimate (needs
   // gt/joints3d.csv): what is left is the error of the body model and the cues, without the
   // search's.

@@ -63,19 +63,41 @@ Observation Perception::observe(int frame, bool compare_masks) const {
       }
     }
   }
-  if (options_.views) {
-    for (int c = 0; c < nc; ++c) obs.views.emplace_back(dataset_->cameras()[c], silhouettes[c]);
-  }
   obs.silhouettes_ms = ms_since(t);
+  obs.silhouettes = std::move(silhouettes);
+  shape(obs.silhouettes, obs);
+  return obs;
+}
+
+void Perception::shape(const std::vector<cv::Mat>& silhouettes, Observation& obs) const {
+  using Clock = std::chrono::steady_clock;
+  auto t = Clock::now();
+  obs.views.clear();
+  if (options_.views) {
+    for (size_t c = 0; c < silhouettes.size(); ++c) {
+      obs.views.emplace_back(dataset_->cameras()[c], silhouettes[c]);
+    }
+  }
+  obs.silhouettes_ms += ms_since(t);
   t = Clock::now();
   hull_.carve(silhouettes, obs.hull);
-  obs.hull_ms = ms_since(t);
+  obs.hull_ms += ms_since(t);
   t = Clock::now();
   obs.centerline = centerline(obs.hull, options_.skeleton);
+  obs.points.clear();
   obs.points.reserve(obs.centerline.size());
   for (const CenterlinePoint& p : obs.centerline) obs.points.push_back(p.position);
-  obs.centerline_ms = ms_since(t);
-  return obs;
+  obs.centerline_ms += ms_since(t);
+}
+
+void Perception::widen(Observation& obs, const OcclusionMap& occlusion) const {
+  std::vector<cv::Mat> wide(obs.silhouettes.size());
+  bool changed = false;
+  for (size_t c = 0; c < wide.size(); ++c) {
+    wide[c] = occlusion.widen(static_cast<int>(c), obs.silhouettes[c]);
+    changed = changed || wide[c].data != obs.silhouettes[c].data;
+  }
+  if (changed) shape(wide, obs);
 }
 
 }  // namespace simcap::tracker

@@ -9,6 +9,7 @@
 #include "tracker/common/silhouettes.h"
 #include "tracker/moschini/appearance.h"
 #include "tracker/moschini/articulated_icp.h"
+#include "tracker/moschini/occlusion_map.h"
 #include "tracker/moschini/skeletonize.h"
 #include "tracker/moschini/visual_hull.h"
 
@@ -31,6 +32,7 @@ struct Observation {
   std::vector<Eigen::Vector3d> points;  // centerline positions, for ICP
   std::vector<SilhouetteRay> rays;      // through silhouette pixels on the ray grid
   std::vector<SilhouetteView> views;    // per camera, when PerceptionOptions::views
+  std::vector<cv::Mat> silhouettes;     // per camera, as extracted (8-bit, nonzero = person)
   std::vector<double> silhouette_iou;   // per camera vs the dataset's masks, when asked for
   double silhouettes_ms = 0, hull_ms = 0, centerline_ms = 0;
 };
@@ -41,10 +43,16 @@ class Perception {
   // Thread-safe. With `compare_masks`, also scores the silhouettes against camNN/mask.
   Observation observe(int frame, bool compare_masks = false) const;
   const SilhouetteExtractor& silhouettes() const { return silhouettes_; }
+  // Carves the hull, finds the centerline and builds the views again from the silhouettes
+  // widened where `occlusion` says a camera cannot see the person; the rays keep to the
+  // silhouettes as extracted. Nothing changes when no camera is blocked near the person.
+  void widen(Observation& obs, const OcclusionMap& occlusion) const;
   // From now on, each ray lists the parts its colour may show (needs PerceptionOptions::colours).
   void set_appearance(const AppearanceModel& appearance) { appearance_ = appearance; }
 
  private:
+  // Views, hull and centerline of `silhouettes`, timed into `obs`.
+  void shape(const std::vector<cv::Mat>& silhouettes, Observation& obs) const;
   const Dataset* dataset_;
   PerceptionOptions options_;
   SilhouetteExtractor silhouettes_;
