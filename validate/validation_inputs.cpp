@@ -8,7 +8,7 @@
 #include "core/error.h"
 #include "core/joint_track.h"
 #include "models/humanoid.h"
-#include "validate/angle_track.h"
+#include "core/angle_track.h"
 #include "validate/visibility.h"
 
 namespace simcap {

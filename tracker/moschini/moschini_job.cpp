@@ -8,6 +8,7 @@
 #include <opencv2/core/utility.hpp>
 #include <optional>
 
+#include "core/angle_track.h"
 #include "core/csv.h"
 #include "core/error.h"
 #include "core/joint_track.h"
@@ -189,6 +190,8 @@ TrackSummary track_moschini(const fs::path& dataset, const fs::path& out,
   fs::create_directories(diag);
   JointTrack track;
   track.joints = he15_joints();
+  AngleTrack angles;
+  angles.joints = rotation_joints();
   CsvWriter centerline(diag / "centerline.csv", {"frame", "axis", "x", "y", "z", "voxels"});
   CsvWriter timings(diag / "timings.csv",
                     {"frame", "silhouettes_ms", "hull_ms", "centerline_ms", "icp_ms", "filter_ms",
@@ -204,6 +207,7 @@ TrackSummary track_moschini(const fs::path& dataset, const fs::path& out,
           const MoschiniTracker& tracker) {
         if (!dims) dims = tracker.model().dimensions(), surface = tracker.surface();
         track.add_frame(obs.frame, tracker.model().he15(step.pose));
+        angles.add_frame(obs.frame, tracker.model().joint_rotations(step.pose));
         for (const CenterlinePoint& p : obs.centerline) {
           std::snprintf(buf, sizeof buf, "%d,%c,%.4f,%.4f,%.4f,%d\n", obs.frame, "xyz"[p.axis],
                         p.position.x(), p.position.y(), p.position.z(), p.voxels);
@@ -266,6 +270,7 @@ TrackSummary track_moschini(const fs::path& dataset, const fs::path& out,
   reinit.commit();
   if (iou) iou->commit();
   write_joint_track(out / "joints3d.csv", track);
+  write_angle_track(out / "angles.csv", angles);
   TrackSummary summary = run;
   summary.track = out;
   return summary;

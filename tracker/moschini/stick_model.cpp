@@ -404,6 +404,64 @@ Eigen::Matrix<double, 3 * kReferencePointCount, Eigen::Dynamic> StickModel::angl
   return J;
 }
 
+namespace {
+
+// rotation_joints() and the segment whose rotation relative to its parent each one is.
+struct RotationJoint {
+  const char* name;
+  int segment;
+};
+constexpr RotationJoint kRotationJoints[] = {
+    {"humanoid_root", kPelvis}, {"l_hip", kLThigh},         {"r_hip", kRThigh},
+    {"l_knee", kLCalf},         {"r_knee", kRCalf},         {"l_talocrural", kLFoot},
+    {"r_talocrural", kRFoot},   {"l_shoulder", kLUpperArm}, {"r_shoulder", kRUpperArm},
+    {"l_elbow", kLForearm},     {"r_elbow", kRForearm},     {"l_radiocarpal", kLHand},
+    {"r_radiocarpal", kRHand}};
+
+}  // namespace
+
+const std::vector<std::string>& rotation_joints() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const RotationJoint& j : kRotationJoints) n.emplace_back(j.name);
+    return n;
+  }();
+  return names;
+}
+
+std::vector<Eigen::Quaterniond> StickModel::joint_rotations(const StickPose& pose) const {
+  // gt/angles.csv measures rotations from the humanoid's neutral pose, whose bones do not all
+  // point where the sticks' zero angles put them (the arms hang a little apart and bent): each
+  // segment's frame is turned by the least rotation taking the humanoid's neutral bone onto the
+  // stick's direction, so that both neutral poses read as no rotation.
+  static const std::vector<Eigen::Vector3d> neutral_bones = [] {
+    const Skeleton h = build_humanoid();
+    std::vector<Eigen::Vector3d> bones;
+    for (const RotationJoint& j : kRotationJoints) {
+      const int joint = h.require(j.name);
+      int child = -1;
+      for (int i = 0; i < h.size() && child < 0; ++i) child = h[i].parent == joint ? i : -1;
+      bones.push_back((h[child].center - h[joint].center).normalized());
+    }
+    return bones;
+  }();
+  std::array<Eigen::Matrix3d, kSegmentCount> align;
+  align.fill(Eigen::Matrix3d::Identity());
+  for (size_t k = 1; k < std::size(kRotationJoints); ++k) {
+    const int segment = kRotationJoints[k].segment;
+    align[segment] =
+        Eigen::Quaterniond::FromTwoVectors(neutral_bones[k], direction(segment)).toRotationMatrix();
+  }
+  const StickGeometry g = geometry(pose);
+  std::vector<Eigen::Quaterniond> out;
+  for (const RotationJoint& j : kRotationJoints) {
+    const int parent = segment_parent(j.segment);
+    const Eigen::Matrix3d world = g.rotation[j.segment] * align[j.segment];
+    out.emplace_back(parent < 0 ? world : (g.rotation[parent] * align[parent]).transpose() * world);
+  }
+  return out;
+}
+
 std::vector<Eigen::Vector3d> StickModel::he15(const StickPose& pose) const {
   const StickGeometry g = geometry(pose);
   const auto p = reference_points(g);

@@ -210,6 +210,12 @@ class StickModel {
   // talocrural the calf's (Moschini's "foot").
   std::vector<Eigen::Vector3d> he15(const StickPose& pose) const;
 
+  // The rotations of the H-Anim joints in rotation_joints(), as gt/angles.csv has them: each
+  // relative to the neutral pose, in its parent's frame. The pelvis gives humanoid_root; the
+  // clavicles are fixed to the chest, so a shoulder's rotation is the upper arm's relative to
+  // the chest. The spine and neck, which the sticks lump into one joint each, are left out.
+  std::vector<Eigen::Quaterniond> joint_rotations(const StickPose& pose) const;
+
   // Moves the angles of `segment` (not the pelvis) so that its world rotation comes as close to
   // `world_rotation` as its joint allows, given its parent's current placement: three angles
   // for a shoulder, the spine or a URDF hip, the stick direction for the 2-angle neck and hips
@@ -242,6 +248,9 @@ class StickModel {
   BodyDimensions dims_;
   JointSet joints_;
 };
+
+// The joints of StickModel::joint_rotations(), in its order.
+const std::vector<std::string>& rotation_joints();
 
 // Rotation by `angle` about a coordinate axis (0 = X, 1 = Y, 2 = Z).
 Eigen::Matrix3d axis_rotation(int axis, double angle);

@@ -90,5 +90,45 @@ TEST(StickModel, ReproducesTheHumanoidsHe15JointsFromItsJoints) {
   }
 }
 
+// The rotations the tracker writes to angles.csv are the humanoid's own where the sticks have
+// its joints: the same pose, turned, read back through the sticks.
+TEST(StickModel, JointRotationsAreTheHumanoidsLocalRotations) {
+  const Skeleton s = build_humanoid();
+  Pose p = Pose::neutral(s);
+  const auto turn = [](double a, const Eigen::Vector3d& axis) {
+    return Eigen::Quaterniond(Eigen::AngleAxisd(a, axis.normalized()));
+  };
+  p.rotations[s.require("humanoid_root")] = turn(0.7, Eigen::Vector3d::UnitY());
+  p.rotations[s.require("l_elbow")] = turn(-1.0, Eigen::Vector3d::UnitX());
+  p.rotations[s.require("r_knee")] = turn(0.8, Eigen::Vector3d::UnitX());
+  p.rotations[s.require("l_hip")] = turn(-0.5, Eigen::Vector3d(1, 0, 0.3));
+  p.rotations[s.require("r_shoulder")] = turn(-0.6, Eigen::Vector3d(1, 0, -0.5));
+  const auto positions = joint_positions(s, p);
+  NamedJoints joints;
+  for (int i = 0; i < s.size(); ++i) joints[s[i].name] = positions[i];
+  const StickModel model(dimensions_from_joints(joints, "test"), JointSet::urdf);
+  const std::vector<Eigen::Quaterniond> q =
+      model.joint_rotations(pose_from_joints(model, joints, "test"));
+  ASSERT_EQ(q.size(), rotation_joints().size());
+  for (size_t k = 0; k < q.size(); ++k) {
+    const std::string& name = rotation_joints()[k];
+    const int j = s.require(name);
+    const Eigen::Quaterniond truth = p.rotations[j];
+    if (name == "humanoid_root") {
+      EXPECT_LT(q[k].angularDistance(truth), 0.06) << name;
+      continue;
+    }
+    // The sticks cannot see a limb's twist about its own axis: compare where each rotation
+    // turns the bone below the joint.
+    int child = -1;
+    for (int i = 0; i < s.size() && child < 0; ++i) child = s[i].parent == j ? i : -1;
+    const Eigen::Vector3d bone = (s[child].center - s[j].center).normalized();
+    // A stick's ankle flexes about one axis and cannot turn the foot out by the 5-6 degrees the
+    // humanoid's neutral foot is turned.
+    const double tolerance = name.ends_with("talocrural") ? 0.12 : 0.05;
+    EXPECT_LT(std::acos(std::clamp((q[k] * bone).dot(truth * bone), -1.0, 1.0)), tolerance) << name;
+  }
+}
+
 }  // namespace
 }  // namespace simcap::tracker

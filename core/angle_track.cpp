@@ -1,8 +1,10 @@
-#include "validate/angle_track.h"
+#include "core/angle_track.h"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
+#include "core/csv.h"
 #include "core/joint_table.h"
 
 namespace simcap {
@@ -10,6 +12,25 @@ namespace fs = std::filesystem;
 
 int AngleTrack::joint_index(const std::string& name) const {
   return find_joint(joints, name);
+}
+
+void AngleTrack::add_frame(int frame, std::vector<Eigen::Quaterniond> q) {
+  frames.push_back(frame);
+  rotations.push_back(std::move(q));
+}
+
+void write_angle_track(const fs::path& path, const AngleTrack& track) {
+  CsvWriter csv(path, kAnglesColumns);
+  char buf[192];
+  for (size_t f = 0; f < track.frames.size(); ++f) {
+    for (size_t j = 0; j < track.joints.size(); ++j) {
+      const Eigen::Quaterniond& q = track.rotations[f][j];
+      std::snprintf(buf, sizeof buf, "%d,%s,%.9f,%.9f,%.9f,%.9f\n", track.frames[f],
+                    track.joints[j].c_str(), q.w(), q.x(), q.y(), q.z());
+      csv.out() << buf;
+    }
+  }
+  csv.commit();
 }
 
 AngleTrack read_angle_track(const fs::path& path) {

@@ -19,8 +19,12 @@ struct AngleTrack {
   std::vector<std::vector<Eigen::Quaterniond>> rotations;
 
   int joint_index(const std::string& name) const;  // -1 when absent
+  // Appends a frame; `q` is in the order of `joints`.
+  void add_frame(int frame, std::vector<Eigen::Quaterniond> q);
 };
 
+// Writes frame,joint,qw,qx,qy,qz with 9 decimals, as the renderer writes gt/angles.csv.
+void write_angle_track(const std::filesystem::path& path, const AngleTrack& track);
 // Reads the table; a quaternion whose norm is not 1 within 1e-3 is an Error naming file:line.
 AngleTrack read_angle_track(const std::filesystem::path& path);
 
