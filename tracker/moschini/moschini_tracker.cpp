@@ -136,7 +136,12 @@ void MoschiniTracker::search_limbs(const IcpTargets& targets, StickPose& pose) c
   }
 }
 
-void MoschiniTracker::resolve_crossed_limbs(const IcpTargets& targets, StickPose& pose) const {
+namespace {
+constexpr double kSwapWorthRefining = 1.5;
+}  // namespace
+
+void MoschiniTracker::resolve_swapped_limbs(const IcpTargets& targets, StickPose& pose,
+                                            bool every_pair) const {
   struct Pair {
     std::array<int, 2> ends;                  // left distal reference points of the pair
     std::vector<std::pair<int, int>> angles;  // left/right angles exchanged
@@ -164,7 +169,7 @@ void MoschiniTracker::resolve_crossed_limbs(const IcpTargets& targets, StickPose
     auto lateral = [&](int i) { return pose.R0.col(0).dot(r[i] - pose.t0); };
     const bool crossed = lateral(pair.ends[0]) < lateral(pair.ends[0] + 1) - margin ||
                          lateral(pair.ends[1]) < lateral(pair.ends[1] + 1) - margin;
-    if (!crossed) continue;
+    if (!crossed && !every_pair) continue;
     StickPose swapped = pose;
     for (const auto& [left, right] : pair.angles) {
       if (right >= model_.angle_count()) continue;
@@ -172,8 +177,12 @@ void MoschiniTracker::resolve_crossed_limbs(const IcpTargets& targets, StickPose
       swapped.theta[left] = limit_angle(swapped.theta[left], ranges[left]);
       swapped.theta[right] = limit_angle(swapped.theta[right], ranges[right]);
     }
+    const double current = refiner_.cost(targets, pose);
+    // An uncrossed pair is only worth a refinement when the plain exchange already fits nearly
+    // as well: a right fit's exchange costs several times more, a swapped one's less.
+    if (!crossed && refiner_.cost(targets, swapped) > kSwapWorthRefining * current) continue;
     refiner_.refine(targets, swapped);
-    if (refiner_.cost(targets, swapped) < refiner_.cost(targets, pose)) pose = swapped;
+    if (refiner_.cost(targets, swapped) < current) pose = swapped;
   }
 }
 
@@ -208,7 +217,8 @@ TrackStep MoschiniTracker::step(const Observation& obs) {
     } else {
       refiner_.refine(targets, measured);
     }
-    resolve_crossed_limbs(targets, measured);
+    const int every = options_.swap_check_every;
+    resolve_swapped_limbs(targets, measured, every > 0 && steps_++ % every == 0);
     polisher_.refine(targets, measured);
     diagnose(measured, obs, out);
     const RecoveryOptions& rec = options_.recovery;

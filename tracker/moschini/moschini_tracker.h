@@ -59,6 +59,11 @@ struct TrackerOptions {
   // pose; the traversal then only serves recovery and --init auto (its jumps to where the
   // centerline is lose more limbs than they find on simcap's datasets, see MOSCHINI.md).
   bool traversal = false;
+  // Every n-th frame each left/right pair of limbs is also fitted exchanged (the left leg where
+  // the right one is) and the exchange kept when it costs less, crossed or not: a tracker that
+  // took the wrong leg for the forward one in a stride, or after a jump with the feet together,
+  // finds out within n frames. 0: only limbs that cross are tried.
+  int swap_check_every = 4;
 };
 
 struct TrackStep {
@@ -102,11 +107,13 @@ class MoschiniTracker {
   // across the body, back, raised) and keeps the refinement that scores best: far from the
   // data, a limb's refinement stays in whatever basin it starts in.
   void search_limbs(const IcpTargets& targets, StickPose& pose) const;
-  // When the fitted legs or arms cross (the left foot or knee, hand or elbow, right of the right
-  // one in the torso's frame), tries the pair exchanged and keeps whichever the hull and the
-  // centerline favour: walking legs pass close by each other, an arm held across the body meets
-  // the other, and the centerline points can then lead each limb onto the other's data.
-  void resolve_crossed_limbs(const IcpTargets& targets, StickPose& pose) const;
+  // Tries each left/right pair of limbs exchanged (the left leg's angles for the right leg's and
+  // back) and keeps whichever fit the data favour: when the pair crosses (the left foot or knee,
+  // hand or elbow, right of the right one in the torso's frame), and on every frame when
+  // `every_pair`. Walking legs pass close by each other, an arm held across the body meets the
+  // other, the centerline can then lead each limb onto the other's data, and a stride read
+  // with the wrong leg forward fits almost as well as the right one.
+  void resolve_swapped_limbs(const IcpTargets& targets, StickPose& pose, bool every_pair) const;
 
   StickModel model_;
   BodySurface surface_;
@@ -120,6 +127,7 @@ class MoschiniTracker {
   int lost_streak_ = 0;
   int patience_ = 0;  // lost frames in a row that start a recovery search now
   int reinitializations_ = 0;
+  int steps_ = 0;
 };
 
 }  // namespace simcap::tracker
