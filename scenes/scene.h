@@ -13,6 +13,7 @@
 
 #include "core/camera.h"
 #include "models/body_mesh.h"
+#include "models/body_source.h"
 #include "models/humanoid.h"
 #include "models/motion_source.h"
 
@@ -52,8 +53,7 @@ struct Light {
 
 struct Actor {
   std::string name = "actor0";
-  BodyParameters body;
-  BodyShape shape;
+  BodySource body;  // simcap's humanoid (parameters, shape) or a body file
   std::array<Rgb, kMaterialRegionCount> colors = {
       Rgb{0.85f, 0.66f, 0.53f}, Rgb{0.20f, 0.35f, 0.65f}, Rgb{0.25f, 0.25f, 0.30f},
       Rgb{0.10f, 0.10f, 0.10f}, Rgb{0.25f, 0.17f, 0.10f}};  // skin, shirt, trousers, shoes, hair

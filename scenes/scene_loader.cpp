@@ -72,6 +72,7 @@ class SceneReader {
   Light read_light(const Field& f) const;
   std::vector<Camera> read_rig(const Field& f, const Room& room) const;
   Actor read_actor(const Field& f, int index) const;
+  void read_body_file(const Field& f, BodySource& body) const;
   MotionSource read_motion(const Field& f) const;
   RenderSettings read_render(const Field& f) const;
   SensorNoise read_noise(const Field& f) const;
@@ -364,17 +365,38 @@ MotionSource SceneReader::read_motion(const Field& f) const {
   return src;
 }
 
+void SceneReader::read_body_file(const Field& f, BodySource& body) const {
+  Map m(f);
+  if (auto v = m.take("x3d")) {
+    body.format = BodyFormat::x3d;
+    body.file = read_file(*v);
+  } else {
+    f.expected("a map with 'x3d: <an H-Anim X3D file>'");
+  }
+  m.finish();
+}
+
 Actor SceneReader::read_actor(const Field& f, int index) const {
   Map m(f);
   Actor a;
   a.name = "actor" + std::to_string(index);
   if (auto v = m.take("name")) a.name = v->text();
-  if (auto v = m.take("height")) a.body.height = v->number(yaml::closed(0.5, 2.5));
-  if (auto v = m.take("girth")) a.shape.girth = v->number(yaml::closed(0.5, 2.0));
+  if (auto v = m.take("body")) {
+    read_body_file(*v, a.body);
+    for (const char* key : {"height", "girth", "proportions"}) {
+      if (auto x = m.take(key)) {
+        x->fail("the body comes from a file (" + v->path() + "); height, girth and proportions " +
+                "shape simcap's own humanoid only");
+      }
+    }
+  }
+  BodyParameters& body = a.body.parameters;
+  if (auto v = m.take("height")) body.height = v->number(yaml::closed(0.5, 2.5));
+  if (auto v = m.take("girth")) a.body.shape.girth = v->number(yaml::closed(0.5, 2.0));
   if (auto v = m.take("proportions")) {
     Map p(*v);
     for (const auto& [key, member] : scene_names::kProportions) {
-      if (auto x = p.take(key)) a.body.proportions.*member = x->number(yaml::positive(1.0));
+      if (auto x = p.take(key)) body.proportions.*member = x->number(yaml::positive(1.0));
     }
     p.finish();
   }

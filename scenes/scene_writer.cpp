@@ -125,13 +125,19 @@ void write_motion(YAML::Emitter& out, const MotionSource& m) {
 void write_actor(YAML::Emitter& out, const Actor& a) {
   out << YAML::BeginMap;
   text(out, "name", a.name);
-  number(out, "height", a.body.height);
-  number(out, "girth", a.shape.girth);
-  out << YAML::Key << "proportions" << YAML::Value << YAML::BeginMap;
-  for (const auto& [key, member] : scene_names::kProportions) {
-    number(out, key, a.body.proportions.*member);
+  if (a.body.format == BodyFormat::x3d) {
+    out << YAML::Key << "body" << YAML::Value << YAML::BeginMap;
+    file(out, "x3d", a.body.file);
+    out << YAML::EndMap;
+  } else {
+    number(out, "height", a.body.parameters.height);
+    number(out, "girth", a.body.shape.girth);
+    out << YAML::Key << "proportions" << YAML::Value << YAML::BeginMap;
+    for (const auto& [key, member] : scene_names::kProportions) {
+      number(out, key, a.body.parameters.proportions.*member);
+    }
+    out << YAML::EndMap;
   }
-  out << YAML::EndMap;
   out << YAML::Key << "colors" << YAML::Value << YAML::BeginMap;
   for (int r = 0; r < kMaterialRegionCount; ++r) vector(out, scene_names::kRegions[r], a.colors[r]);
   out << YAML::EndMap;

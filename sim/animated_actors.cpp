@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
-#include "models/humanoid.h"
+#include "models/body_source.h"
 #include "models/motion_source.h"
 
 namespace simcap {
@@ -49,8 +49,9 @@ AnimatedActors::AnimatedActors(const Scene& scene)
   if (scene.actors.empty()) throw Error("scene " + scene.source.string() + ": it has no actors");
   for (const Actor& actor : scene.actors) {
     auto g = std::make_unique<Group>();
-    g->skeleton = build_humanoid(actor.body);
-    g->mesh = build_body_mesh(g->skeleton, actor.shape);
+    Body body = build_body(actor.body);
+    g->skeleton = std::move(body.skeleton);
+    g->mesh = std::move(body.mesh);
     g->motion = load_motion(actor.motion, g->skeleton, fps_);
     if (g->motion.frames.empty()) {
       throw Error("actor '" + actor.name + "': its motion has no frames");

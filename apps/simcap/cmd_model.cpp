@@ -11,6 +11,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "models/body_mesh.h"
+#include "models/body_source.h"
 #include "models/humanoid.h"
 #include "models/joint_limits.h"
 #include "models/mesh_export.h"
@@ -26,6 +27,7 @@ struct ModelOptions {
   std::string output;
   double height = 1.75;
   double girth = 1.0;
+  std::string body;  // a body file instead of the humanoid
   std::string bvh;
   std::string procedural;
   double time_s = 0.0;
@@ -36,12 +38,28 @@ Skeleton skeleton_of(const ModelOptions& o) {
   return build_humanoid({.height = o.height, .proportions = {}});
 }
 
+Body body_of(const ModelOptions& o) {
+  if (o.body.empty()) {
+    BodySource source;
+    source.parameters.height = o.height;
+    source.shape.girth = o.girth;
+    return build_body(source);
+  }
+  return build_body(body_file_source(o.body));
+}
+
 int info(const ModelOptions& o) {
-  const Skeleton s = skeleton_of(o);
+  const Body body = body_of(o);
+  const Skeleton& s = body.skeleton;
   const auto& limits = humanoid_joint_limits();
-  std::printf(
-      "simcap humanoid, height %.3f m (Drillis & Contini proportions), %d joints and sites\n",
-      o.height, s.size());
+  if (o.body.empty()) {
+    std::printf(
+        "simcap humanoid, height %.3f m (Drillis & Contini proportions), %d joints and sites\n",
+        o.height, s.size());
+  } else {
+    std::printf("%s: %d joints and sites\n", o.body.c_str(), s.size());
+    for (const std::string& note : body.notes) std::printf("note: %s\n", note.c_str());
+  }
   std::printf("%3s  %-24s %-28s %-18s %8s %8s %8s %8s  %s\n", "#", "joint", "segment", "parent",
               "x", "y", "z", "length", "DOFs");
   int dof_count = 0;
@@ -58,7 +76,7 @@ int info(const ModelOptions& o) {
                 joint.parent < 0 ? "-" : s[joint.parent].name.c_str(), joint.center.x(),
                 joint.center.y(), joint.center.z(), s.offset(j).norm(), dofs.c_str());
   }
-  const BodyMesh mesh = build_body_mesh(s, {.girth = o.girth});
+  const BodyMesh& mesh = body.mesh;
   std::map<MaterialRegion, int> per_region;
   for (MaterialRegion r : mesh.triangle_material) ++per_region[r];
   std::string regions;
@@ -67,9 +85,8 @@ int info(const ModelOptions& o) {
                std::to_string(n);
   }
   std::printf(
-      "limited DOFs: %d (URDF revolute joints)\nbody mesh (girth %.2f): %zu vertices, "
-      "%zu triangles (%s)\n",
-      dof_count, o.girth, mesh.vertices.size(), mesh.triangles.size(), regions.c_str());
+      "limited DOFs: %d (URDF revolute joints)\nbody mesh: %zu vertices, %zu triangles (%s)\n",
+      dof_count, mesh.vertices.size(), mesh.triangles.size(), regions.c_str());
   return 0;
 }
 
@@ -102,7 +119,8 @@ std::pair<const JointLimits*, std::pair<size_t, double>> parse_set(const std::st
 }
 
 int mesh(const ModelOptions& o) {
-  const Skeleton s = skeleton_of(o);
+  const Body b = body_of(o);
+  const Skeleton& s = b.skeleton;
   Pose pose = Pose::neutral(s);
   if (!o.bvh.empty() || !o.procedural.empty()) {
     MotionSource source;
@@ -132,7 +150,7 @@ int mesh(const ModelOptions& o) {
     angles[dof] = angle;
     pose.rotations[j] = dof_rotation(*limits, angles);
   }
-  const BodyMesh body = build_body_mesh(s, {.girth = o.girth});
+  const BodyMesh& body = b.mesh;
   std::vector<float> positions(3 * body.vertices.size() + 1);
   Skinner(s, body).skin(forward_kinematics(s, pose), positions.data());
   export_body_mesh(o.output, body, std::span(positions).first(3 * body.vertices.size()),
@@ -195,6 +213,13 @@ void add_model(CLI::App& app, Action& action) {
         ->check(CLI::Range(0.5, 2.0))
         ->capture_default_str();
   };
+  auto add_body = [o](CLI::App* cmd) {
+    cmd->add_option("--body", o->body,
+                    "A body file instead of simcap's humanoid: an H-Anim X3D humanoid (.x3d)")
+        ->check(CLI::ExistingFile)
+        ->excludes(cmd->get_option("--height"))
+        ->excludes(cmd->get_option("--girth"));
+  };
 
   auto* i = model->add_subcommand(
       "info",
@@ -202,7 +227,10 @@ void add_model(CLI::App& app, Action& action) {
       "the body mesh's size");
   add_height(i);
   add_girth(i);
-  i->footer("Example:\n  simcap model info --height 1.62");
+  add_body(i);
+  i->footer(
+      "Examples:\n  simcap model info --height 1.62\n"
+      "  simcap model info --body models/assets/JoeSkin.x3d");
   i->callback([&action, o] { action = [o] { return info(*o); }; });
 
   auto* u = model->add_subcommand(
@@ -221,6 +249,7 @@ void add_model(CLI::App& app, Action& action) {
   m->add_option("-o,--output", o->output, "Mesh file: .obj, .ply or .glb")->required();
   add_height(m);
   add_girth(m);
+  add_body(m);
   auto* bvh = m->add_option("--bvh", o->bvh, "Pose from this BVH clip (retargeted)");
   m->add_option("--procedural", o->procedural,
                 "Pose from this procedural motion (stand, tpose, walk_in_place, walk_path, "
@@ -236,7 +265,8 @@ void add_model(CLI::App& app, Action& action) {
       "Examples:\n"
       "  simcap model mesh -o body.obj\n"
       "  simcap model mesh -o wave.glb --set l_shoulder_abduction=150 --set l_elbow_flexion=-60\n"
-      "  simcap model mesh -o walk.ply --procedural walk_path --time 1.2");
+      "  simcap model mesh -o walk.ply --procedural walk_path --time 1.2\n"
+      "  simcap model mesh --body models/assets/JoeSkin.x3d --bvh walk.bvh --time 2 -o joe.glb");
   m->callback([&action, o] { action = [o] { return mesh(*o); }; });
 
   auto* l = model->add_subcommand(

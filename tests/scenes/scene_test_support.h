@@ -85,8 +85,8 @@ inline void expect_scenes_equal(const Scene& a, const Scene& b, double tol = 1e-
     const Actor &x = a.actors[i], &y = b.actors[i];
     SCOPED_TRACE("actor " + x.name);
     EXPECT_EQ(x.name, y.name);
-    EXPECT_NEAR(x.body.height, y.body.height, tol);
-    const BodyProportions &p = x.body.proportions, &q = y.body.proportions;
+    EXPECT_NEAR(x.body.parameters.height, y.body.parameters.height, tol);
+    const BodyProportions &p = x.body.parameters.proportions, &q = y.body.parameters.proportions;
     for (const auto& [u, v] : {std::pair{p.shoulder_height, q.shoulder_height},
                                {p.chin_height, q.chin_height},
                                {p.hip_height, q.hip_height},
@@ -102,7 +102,9 @@ inline void expect_scenes_equal(const Scene& a, const Scene& b, double tol = 1e-
                                {p.hip_joint_spacing, q.hip_joint_spacing}}) {
       EXPECT_NEAR(u, v, tol);
     }
-    EXPECT_NEAR(x.shape.girth, y.shape.girth, tol);
+    EXPECT_NEAR(x.body.shape.girth, y.body.shape.girth, tol);
+    EXPECT_EQ(x.body.format, y.body.format);
+    EXPECT_EQ(x.body.file, y.body.file);
     EXPECT_EQ(x.colors, y.colors);
     EXPECT_EQ(x.motion.bvh, y.motion.bvh);
     EXPECT_NEAR(x.motion.bvh_metres_per_unit, y.motion.bvh_metres_per_unit, tol);

@@ -224,11 +224,11 @@ actors:
   ASSERT_EQ(s.actors.size(), 4u);
   const Actor& a = s.actors[0];
   EXPECT_EQ(a.name, "alice");
-  EXPECT_EQ(a.body.height, 1.62);
-  EXPECT_EQ(a.shape.girth, 1.1);
-  EXPECT_EQ(a.body.proportions.hip_height, 0.52);
-  EXPECT_EQ(a.body.proportions.forearm, 0.15);
-  EXPECT_EQ(a.body.proportions.knee_height, BodyProportions{}.knee_height);
+  EXPECT_EQ(a.body.parameters.height, 1.62);
+  EXPECT_EQ(a.body.shape.girth, 1.1);
+  EXPECT_EQ(a.body.parameters.proportions.hip_height, 0.52);
+  EXPECT_EQ(a.body.parameters.proportions.forearm, 0.15);
+  EXPECT_EQ(a.body.parameters.proportions.knee_height, BodyProportions{}.knee_height);
   const Actor defaults;
   EXPECT_EQ(a.colors[static_cast<int>(MaterialRegion::skin)],
             defaults.colors[static_cast<int>(MaterialRegion::skin)]);
@@ -244,7 +244,7 @@ actors:
   EXPECT_EQ(s.actors[1].motion.bvh,
             SIMCAP_SOURCE_DIR "/models/assets/cmu_131_01_start_walk_stop.bvh");
   EXPECT_EQ(s.actors[1].motion.bvh_metres_per_unit, 0.0);
-  EXPECT_EQ(s.actors[1].body.height, BodyParameters{}.height);
+  EXPECT_EQ(s.actors[1].body.parameters.height, BodyParameters{}.height);
 
   const ProceduralSpec& p = s.actors[2].motion.procedural;
   EXPECT_TRUE(s.actors[2].motion.bvh.empty());

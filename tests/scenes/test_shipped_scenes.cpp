@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "models/body_source.h"
 #include "models/humanoid.h"
 #include "models/motion_source.h"
 #include "models/pose.h"
@@ -19,7 +20,8 @@ namespace {
 
 using simcap::testing::TempDir;
 
-const std::vector<std::string> kShipped = {"studio4", "studio8", "occluders", "monocular"};
+const std::vector<std::string> kShipped = {"studio4", "studio8", "occluders", "monocular",
+                                           "x3d_joe"};
 
 // The actor's joint positions in the room for every frame at the scene's frame rate.
 std::vector<std::vector<Eigen::Vector3d>> world_joints(const Scene& scene, const Actor& actor,
@@ -112,7 +114,7 @@ TEST(ShippedScenes, EveryCameraSeesWhereTheActorStarts) {
     SCOPED_TRACE(name);
     const Scene s = load_scene(shipped_scene_path(name));
     const Actor& actor = s.actors[0];
-    const Skeleton skeleton = build_humanoid(actor.body);
+    const Skeleton skeleton = build_body(actor.body).skeleton;
     const Motion motion = load_motion(actor.motion, skeleton, s.render.fps);
     ASSERT_FALSE(motion.frames.empty());
     Eigen::Vector3d start = actor_placement(actor) * motion.frames[0].root_position;
@@ -132,7 +134,7 @@ TEST(ShippedScenes, OccludersHideLimbsPartOfTheTimeAndNeverTouchTheBody) {
     testing::expect_cameras_equal(s.cameras[i], studio.cameras[i], 0);
   }
   const Actor& actor = s.actors[0];
-  const Skeleton skeleton = build_humanoid(actor.body);
+  const Skeleton skeleton = build_body(actor.body).skeleton;
   const auto frames = world_joints(s, actor, skeleton);
   std::vector<int> limbs;
   for (const char* j : {"l_knee", "r_knee", "l_talocrural", "r_talocrural", "l_elbow", "r_elbow",
