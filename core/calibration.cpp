@@ -19,14 +19,6 @@ cv::Mat to_mat(const Eigen::MatrixXd& m) {
   return out;
 }
 
-Eigen::Vector3d rodrigues_of(const Eigen::Matrix3d& R) {
-  cv::Mat rvec;
-  cv::Rodrigues(to_mat(R), rvec);
-  Eigen::Vector3d out;
-  cv::cv2eigen(rvec, out);
-  return out;
-}
-
 // Reads fields of one camera and reports problems as "file: camera 'name': field 'key': ...".
 class FieldReader {
  public:
@@ -145,6 +137,14 @@ void write_storage(const fs::path& path, WriteBody&& body) {
 }
 
 }  // namespace
+
+Eigen::Vector3d rodrigues_of(const Eigen::Matrix3d& R) {
+  cv::Mat rvec;
+  cv::Rodrigues(to_mat(R), rvec);
+  Eigen::Vector3d out;
+  cv::cv2eigen(rvec, out);
+  return out;
+}
 
 void write_opencv_calibration(const fs::path& path, const std::vector<Camera>& cams) {
   write_storage(path, [&](cv::FileStorage& fsw) {

@@ -24,6 +24,9 @@ void write_easymocap_calibration(const std::filesystem::path& intri_path,
 std::vector<Camera> read_easymocap_calibration(const std::filesystem::path& intri_path,
                                                const std::filesystem::path& extri_path);
 
+// OpenCV's Rodrigues vector (axis times angle) of a rotation matrix, as cv::Rodrigues gives it.
+Eigen::Vector3d rodrigues_of(const Eigen::Matrix3d& R);
+
 // The camera called `name`; throws Error naming `source` and the cameras it has otherwise.
 const Camera& find_camera(const std::vector<Camera>& cams, std::string_view name,
                           const std::filesystem::path& source);

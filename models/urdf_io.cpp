@@ -3,7 +3,6 @@
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
 
-#include <charconv>
 #include <functional>
 #include <map>
 #include <mutex>
@@ -12,6 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/literal_text.h"
 
 namespace simcap {
 namespace {
@@ -19,12 +19,8 @@ namespace {
 constexpr double kEffort = 1000.0;   // N m, placeholder (see urdf_io.h)
 constexpr double kVelocity = 100.0;  // rad/s, placeholder
 
-// Shortest text that parses back to the same double.
 std::string number(double v) {
-  if (v == 0.0) v = 0.0;  // no "-0"
-  char buf[32];
-  const auto result = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, result.ptr);
+  return shortest_text(v);
 }
 
 std::string triple(const Eigen::Vector3d& v) {

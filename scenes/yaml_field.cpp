@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/literal_text.h"
 
 namespace simcap::yaml {
 
@@ -79,17 +80,11 @@ Range any_finite() {
 }
 
 std::string format_number(double v) {
-  if (v == 0) v = 0;  // "-0" reads back equal but puzzles people
-  char buf[64];
-  const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, ptr);
+  return shortest_text(v);
 }
 
 std::string format_number(float v) {
-  if (v == 0) v = 0;
-  char buf[64];
-  const auto [ptr, ec] = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, ptr);
+  return shortest_text(v);
 }
 
 Field::Field(YAML::Node node, std::string path, const Origin* origin)

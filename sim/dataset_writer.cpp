@@ -7,9 +7,12 @@
 #include <ostream>
 
 #include "core/atomic_file.h"
+#include "core/blender_cameras.h"
 #include "core/calibration.h"
+#include "core/colmap_model.h"
 #include "core/image_io.h"
 #include "core/joint_track.h"
+#include "core/toml_calibration.h"
 
 namespace simcap {
 namespace fs = std::filesystem;
@@ -72,6 +75,13 @@ void DatasetWriter::write_fixed_files(const Scene& scene, const Skeleton& skelet
   write_opencv_calibration(root_ / "calibration" / "opencv.yaml", scene.cameras);
   write_easymocap_calibration(root_ / "calibration" / "intri.yml",
                               root_ / "calibration" / "extri.yml", scene.cameras);
+  write_toml_calibration(root_ / "calibration" / "calibration.toml", scene.cameras);
+  std::vector<std::string> first_images;
+  for (const std::string& name : cameras_) {
+    first_images.push_back(name + "/rgb/" + frame_file(0, "rgb"));
+  }
+  write_colmap_model(root_ / "calibration" / "colmap", scene.cameras, first_images);
+  write_blender_cameras(root_ / "calibration" / "blender_cameras.py", scene.cameras);
   nlohmann::ordered_json parts;
   parts["description"] =
       "Pixel values of camNN/parts/*.png: 0 = background (no body), otherwise 1 + the skeleton "

@@ -210,7 +210,9 @@ TEST_F(StudioDataset, HasEveryFileOfTheLayout) {
   const fs::path d = dataset();
   for (const char* f :
        {"scene.yaml", "meta.json", "parts.json", "calibration/opencv.yaml", "calibration/intri.yml",
-        "calibration/extri.yml", "gt/joints3d.csv", "gt/joints2d.csv", "gt/angles.csv"}) {
+        "calibration/extri.yml", "calibration/calibration.toml", "calibration/colmap/cameras.txt",
+        "calibration/colmap/images.txt", "calibration/colmap/points3D.txt",
+        "calibration/blender_cameras.py", "gt/joints3d.csv", "gt/joints2d.csv", "gt/angles.csv"}) {
     EXPECT_TRUE(fs::is_regular_file(d / f)) << f;
   }
   for (const char* cam : {"cam00", "cam01", "cam02", "cam03"}) {
