@@ -13,6 +13,7 @@ struct AnimatedActors::Group {
   Skeleton skeleton;
   BodyMesh mesh;
   std::unique_ptr<Skinner> skinner;
+  std::vector<BodyPoint> coco17, h36m17;
   Motion motion;
   long start_frame = 0;  // scene frame at which the motion's first frame plays
   std::vector<int> actors;
@@ -65,6 +66,8 @@ AnimatedActors::AnimatedActors(const Scene& scene)
     });
     if (shared == groups_.end()) {
       g->skinner = std::make_unique<Skinner>(g->skeleton, g->mesh);
+      g->coco17 = coco17_points(g->skeleton, g->mesh);
+      g->h36m17 = h36m17_points(g->skeleton, g->mesh);
       groups_.push_back(std::move(g));
       shared = groups_.end() - 1;
     }
@@ -76,6 +79,8 @@ AnimatedActors::AnimatedActors(const Scene& scene)
     PosedActor p;
     p.name = actor.name;
     p.skeleton = &(*shared)->skeleton;
+    p.coco17 = &(*shared)->coco17;
+    p.h36m17 = &(*shared)->h36m17;
     posed_.push_back(std::move(p));
     const long end = (*shared)->start_frame + static_cast<long>((*shared)->motion.frames.size());
     frames_available_ = std::max<long>(frames_available_, end - first_frame_);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "models/body_mesh.h"
+#include "models/keypoint_sets.h"
 #include "models/motion.h"
 #include "models/pose.h"
 #include "models/skeleton.h"
@@ -22,6 +23,9 @@ struct PosedActor {
   const Skeleton* skeleton = nullptr;
   Pose pose;  // in world coordinates: the actor's yaw and offset are applied to the root
   std::vector<Eigen::Isometry3d> joint_world;  // forward_kinematics(pose)
+  // The body's keypoints of other datasets (models/keypoint_sets.h).
+  const std::vector<BodyPoint>* coco17 = nullptr;
+  const std::vector<BodyPoint>* h36m17 = nullptr;
 };
 
 class AnimatedActors {

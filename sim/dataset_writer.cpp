@@ -113,15 +113,25 @@ void DatasetWriter::write_frame(int frame, const std::vector<RenderedView>& view
   });
 }
 
-void DatasetWriter::open_truth(const std::vector<PosedActor>& actors) {
+void DatasetWriter::open_truth(const std::vector<PosedActor>& actors,
+                               const std::vector<Camera>& cameras) {
   joint_names_.clear();
+  h36m_names_.clear();
+  std::vector<std::string> actor_names;
   for (size_t a = 0; a < actors.size(); ++a) {
     auto& names = joint_names_.emplace_back();
     const std::string prefix = actors.size() > 1 && a > 0 ? actors[a].name + "/" : "";
     for (const int j : truth_joints(*actors[a].skeleton)) {
       names.push_back(prefix + (*actors[a].skeleton)[j].name);
     }
+    auto& h36m = h36m_names_.emplace_back();
+    if (actors[a].h36m17) {
+      for (const BodyPoint& p : *actors[a].h36m17) h36m.push_back(prefix + p.name);
+    }
+    actor_names.push_back(actors[a].name);
   }
+  h36m_ = std::make_unique<CsvWriter>(root_ / "gt" / "joints3d_h36m17.csv", kJoints3dColumns);
+  coco_ = std::make_unique<CocoKeypoints>(cameras, std::move(actor_names));
   joints3d_ = std::make_unique<CsvWriter>(root_ / "gt" / "joints3d.csv", kJoints3dColumns);
   joints2d_ = std::make_unique<CsvWriter>(
       root_ / "gt" / "joints2d.csv",
@@ -131,7 +141,17 @@ void DatasetWriter::open_truth(const std::vector<PosedActor>& actors) {
       std::vector<std::string>{"frame", "joint", "qw", "qx", "qy", "qz"});
 }
 
-void DatasetWriter::append_truth(const FrameTruth& t) {
+void DatasetWriter::append_truth(const FrameTruth& t,
+                                 const std::vector<std::vector<MaskBox>>& boxes) {
+  for (size_t a = 0; a < t.h36m_positions.size(); ++a) {
+    for (size_t k = 0; k < t.h36m_positions[a].size(); ++k) {
+      std::ostream& o = h36m_->out();
+      o << t.frame << ',' << h36m_names_[a][k];
+      for (int i = 0; i < 3; ++i) put_number(o, t.h36m_positions[a][k][i], 7);
+      o << '\n';
+    }
+  }
+  coco_->add_frame(t.frame, t.coco_views, boxes);
   for (size_t a = 0; a < t.positions.size(); ++a) {
     for (size_t j = 0; j < t.positions[a].size(); ++j) {
       const auto& p = t.positions[a][j];
@@ -166,6 +186,8 @@ void DatasetWriter::commit_truth() {
   joints3d_->commit();
   joints2d_->commit();
   angles_->commit();
+  h36m_->commit();
+  coco_->write(root_ / "gt" / "keypoints_coco.json");
 }
 
 void DatasetWriter::remove_stale_temporaries() const {

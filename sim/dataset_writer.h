@@ -12,7 +12,9 @@
 #include "core/csv.h"
 #include "core/image_io.h"
 #include "scenes/scene.h"
+#include "sim/coco_keypoints.h"
 #include "sim/ground_truth.h"
+#include "sim/mask_boxes.h"
 #include "sim/renderer.h"
 
 namespace simcap {
@@ -39,11 +41,14 @@ class DatasetWriter {
   void write_backgrounds(const std::vector<RenderedView>& views) const;
   void write_frame(int frame, const std::vector<RenderedView>& views) const;
 
-  // Opens gt/joints3d.csv, gt/joints2d.csv and gt/angles.csv. Joint names are H-Anim names;
-  // with several actors, the joints of every actor after the first are prefixed "<actor>/".
-  void open_truth(const std::vector<PosedActor>& actors);
-  void append_truth(const FrameTruth& truth);
-  // Publishes the three tables; until then they exist only under temporary names.
+  // Opens gt/joints3d.csv, gt/joints2d.csv, gt/angles.csv and gt/joints3d_h36m17.csv
+  // (Human3.6M's 17 joints, its names, the joints3d.csv columns) and starts
+  // gt/keypoints_coco.json (sim/coco_keypoints.h). Joint names are H-Anim names; with several
+  // actors, the joints of every actor after the first are prefixed "<actor>/".
+  void open_truth(const std::vector<PosedActor>& actors, const std::vector<Camera>& cameras);
+  // `boxes`: each actor's box in each camera's mask of the frame, [camera][actor].
+  void append_truth(const FrameTruth& truth, const std::vector<std::vector<MaskBox>>& boxes);
+  // Publishes the tables; until then they exist only under temporary names.
   void commit_truth();
 
   // Removes temporary files an interrupted render left behind (AtomicFile's ".<name>.tmp*").
@@ -54,7 +59,9 @@ class DatasetWriter {
   std::vector<std::string> cameras_;
   std::vector<std::string> kinds_;
   std::vector<std::vector<std::string>> joint_names_;  // [actor][joint]
-  std::unique_ptr<CsvWriter> joints3d_, joints2d_, angles_;
+  std::vector<std::vector<std::string>> h36m_names_;   // [actor][keypoint]
+  std::unique_ptr<CsvWriter> joints3d_, joints2d_, angles_, h36m_;
+  std::unique_ptr<CocoKeypoints> coco_;
 };
 
 // Encoding of the dataset's images. CPU time per 640x480 image of studio4, measured with

@@ -41,6 +41,19 @@ Visibility classify(const CameraRays& rays, const EmbreeScene& scene, int actor,
   return scene.actor_of(hit) == actor ? Visibility::self_occluded : Visibility::scene_occluded;
 }
 
+// A point of `actor` as the camera of `rays` sees it.
+JointView view_of(const CameraRays& rays, const EmbreeScene& scene, int actor,
+                  const Eigen::Vector3d& world) {
+  const Camera& cam = rays.camera();
+  JointView v;
+  const Eigen::Vector3d c = cam.to_camera(world);
+  v.depth = c.z();
+  v.pixel = c.z() > 0 ? cam.project_camera(c)
+                      : Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+  v.visibility = classify(rays, scene, actor, v.pixel, v.depth);
+  return v;
+}
+
 }  // namespace
 
 std::string_view visibility_name(Visibility v) {
@@ -70,6 +83,14 @@ FrameTruth compute_frame_truth(int frame, const std::vector<PosedActor>& actors,
   FrameTruth t;
   t.frame = frame;
   for (const PosedActor& a : actors) {
+    auto& coco = t.coco_positions.emplace_back();
+    auto& h36m = t.h36m_positions.emplace_back();
+    if (a.coco17) {
+      for (const BodyPoint& p : *a.coco17) coco.push_back(body_point_world(p, a.joint_world));
+    }
+    if (a.h36m17) {
+      for (const BodyPoint& p : *a.h36m17) h36m.push_back(body_point_world(p, a.joint_world));
+    }
     auto& pos = t.positions.emplace_back();
     auto& rot = t.rotations.emplace_back();
     for (const int j : truth_joints(*a.skeleton)) {
@@ -80,18 +101,17 @@ FrameTruth compute_frame_truth(int frame, const std::vector<PosedActor>& actors,
     }
   }
   for (const CameraRays& rays : cameras) {
-    const Camera& cam = rays.camera();
     auto& per_actor = t.views.emplace_back();
+    auto& coco_per_actor = t.coco_views.emplace_back();
     for (size_t a = 0; a < actors.size(); ++a) {
+      const int actor = static_cast<int>(a);
       auto& joints = per_actor.emplace_back();
       for (const Eigen::Vector3d& p : t.positions[a]) {
-        JointView v;
-        const Eigen::Vector3d c = cam.to_camera(p);
-        v.depth = c.z();
-        v.pixel = c.z() > 0 ? cam.project_camera(c)
-                            : Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
-        v.visibility = classify(rays, scene, static_cast<int>(a), v.pixel, v.depth);
-        joints.push_back(v);
+        joints.push_back(view_of(rays, scene, actor, p));
+      }
+      auto& coco = coco_per_actor.emplace_back();
+      for (const Eigen::Vector3d& p : t.coco_positions[a]) {
+        coco.push_back(view_of(rays, scene, actor, p));
       }
     }
   }

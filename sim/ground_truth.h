@@ -40,6 +40,10 @@ struct FrameTruth {
   std::vector<std::vector<Eigen::Vector3d>> positions;
   std::vector<std::vector<Eigen::Quaterniond>> rotations;  // local, relative to neutral, w >= 0
   std::vector<std::vector<std::vector<JointView>>> views;  // [camera][actor][joint]
+  // The actors' COCO-17 and Human3.6M-17 keypoints (PosedActor::coco17, h36m17): world
+  // positions [actor][keypoint], and the COCO ones as the cameras see them [camera][actor][k].
+  std::vector<std::vector<Eigen::Vector3d>> coco_positions, h36m_positions;
+  std::vector<std::vector<std::vector<JointView>>> coco_views;
 };
 
 // The joints ground truth reports: every skeleton joint except end sites, in skeleton order.

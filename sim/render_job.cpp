@@ -236,12 +236,14 @@ RenderSummary render_dataset(const fs::path& scene_file, const fs::path& out_dir
   if (!(options.resume && writer.backgrounds_complete())) {
     writer.write_backgrounds(setup.render_background());
   }
-  writer.open_truth(setup.actors().posed());
+  writer.open_truth(setup.actors().posed(), scene.cameras);
+  const int actor_count = static_cast<int>(setup.actors().posed().size());
 
   struct FrameWork {
     int frame = 0;
     FrameTruth truth;
-    std::vector<RenderedView> views;  // empty when the frame's files already exist
+    std::vector<RenderedView> views;          // empty when the frame's files already exist
+    std::vector<std::vector<MaskBox>> boxes;  // [camera][actor], for the COCO annotations
   };
   using Work = std::shared_ptr<FrameWork>;
   // Image buffers of written frames are reused: fresh ones would cost page faults every frame.
@@ -279,6 +281,12 @@ RenderSummary render_dataset(const fs::path& scene_file, const fs::path& out_dir
     return w;
   };
   auto write_images = [&](Work w) {
+    for (size_t c = 0; c < cameras.size(); ++c) {
+      const cv::Mat mask =
+          w->views.empty() ? read_image(writer.image_path(static_cast<int>(c), "mask", w->frame))
+                           : w->views[c].mask;
+      w->boxes.push_back(mask_boxes(mask, actor_count));
+    }
     if (w->views.empty()) return w;
     const auto t0 = Clock::now();
     writer.write_frame(w->frame, w->views);
@@ -288,7 +296,7 @@ RenderSummary render_dataset(const fs::path& scene_file, const fs::path& out_dir
     return w;
   };
   auto write_truth = [&](Work w) {
-    writer.append_truth(w->truth);
+    writer.append_truth(w->truth, w->boxes);
     progress.advance();
   };
   tbb::parallel_pipeline(
