@@ -19,8 +19,8 @@ inline constexpr int kMaterialRegionCount = 5;
 std::string_view material_region_name(MaterialRegion region);
 
 struct BodyMesh {
-  std::vector<Eigen::Vector3f> vertices;                 // neutral pose, world frame, metres
-  std::vector<std::array<std::uint32_t, 3>> triangles;   // counter-clockwise seen from outside
+  std::vector<Eigen::Vector3f> vertices;                // neutral pose, world frame, metres
+  std::vector<std::array<std::uint32_t, 3>> triangles;  // counter-clockwise seen from outside
   // Up to four skinning influences per vertex: skeleton joint indices and weights summing to 1
   // (unused slots have weight 0).
   std::vector<std::array<std::uint16_t, 4>> influence_joint;

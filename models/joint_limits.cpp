@@ -6,6 +6,9 @@
 #include <numbers>
 
 #include "core/error.h"
+#include "models/humanoid.h"
+#include "models/shipped_assets.h"
+#include "models/urdf_io.h"
 
 namespace simcap {
 namespace {
@@ -29,14 +32,6 @@ DofLimit converted(std::string name, const Eigen::Vector3d& axis, double source_
 DofLimit direct(std::string name, const Eigen::Vector3d& axis, double lower, double upper,
                 std::string source) {
   return converted(std::move(name), axis, lower, upper, 1.0, 0.0, std::move(source));
-}
-
-// A DOF about Y or Z, whose motions have opposite signs on the two sides: [lower, upper] degrees
-// on the left (sign 1), mirrored on the right (sign -1).
-DofLimit sided(std::string name, const Eigen::Vector3d& axis, double sign, double lower,
-               double upper, std::string source) {
-  const double a = sign * deg(lower), b = sign * deg(upper);
-  return direct(std::move(name), axis, std::min(a, b), std::max(a, b), std::move(source));
 }
 
 // Moschini's torso frame has X forward, Y to the left and Z up (Table 5.3: the head is at +Z,
@@ -125,101 +120,6 @@ std::vector<JointLimits> make_gomez() {
   };
 }
 
-const DofLimit& pick(const std::vector<JointLimits>& table, std::string_view dof) {
-  for (const JointLimits& j : table) {
-    for (const DofLimit& d : j.dofs) {
-      if (d.name == dof) return d;
-    }
-  }
-  throw Error("joint limits: no DOF '" + std::string(dof) + "' in the source table");
-}
-
-// Anatomical ranges for what neither thesis constrains. AAOS: American Academy of Orthopaedic
-// Surgeons, "Joint Motion: Method of Measuring and Recording" (1965), average adult ranges as
-// tabulated in Norkin & White, "Measurement of Joint Motion", Appendix A. Regional spine ranges
-// are shared equally among the simcap joints of the region (a simcap choice).
-std::vector<JointLimits> make_humanoid() {
-  const auto& mo = moschini_joint_limits();
-  const std::string aaos = "AAOS 1965 (Norkin & White App. A): ";
-  std::vector<JointLimits> out;
-
-  const std::string sacroiliac =
-      "Sturesson et al. 1989 (Spine 14:162): in vivo sacroiliac rotation of a few degrees; "
-      "simcap allows 4 deg";
-  out.push_back({"sacroiliac",
-                 {direct("sacroiliac_lateral", kZ, deg(-4), deg(4), sacroiliac),
-                  direct("sacroiliac_flexion", kX, deg(-4), deg(4), sacroiliac),
-                  direct("sacroiliac_twist", kY, deg(-4), deg(4), sacroiliac)}});
-  const std::string thoracolumbar =
-      "thoracolumbar flexion 80, extension 25, lateral flexion 35, rotation 45 deg, "
-      "/6 over vl5..vt1";
-  for (const char* j : {"vl5", "vl3", "vl1", "vt10", "vt6", "vt1"}) {
-    const std::string n(j);
-    out.push_back(
-        {n,
-         {direct(n + "_lateral", kZ, deg(-35.0 / 6), deg(35.0 / 6), aaos + thoracolumbar),
-          direct(n + "_flexion", kX, deg(-25.0 / 6), deg(80.0 / 6), aaos + thoracolumbar),
-          direct(n + "_twist", kY, deg(-45.0 / 6), deg(45.0 / 6), aaos + thoracolumbar)}});
-  }
-  const std::string cervical =
-      "cervical flexion 45, extension 45, lateral flexion 45, rotation 60 deg, "
-      "/3 over vc7, vc4, skullbase";
-  out.push_back({"vc7",
-                 {pick(mo, "vc7_lateral"), pick(mo, "vc7_flexion"),
-                  direct("vc7_twist", kY, deg(-20), deg(20), aaos + cervical)}});
-  for (const char* j : {"vc4", "skullbase"}) {
-    const std::string n(j);
-    out.push_back({n,
-                   {direct(n + "_lateral", kZ, deg(-15), deg(15), aaos + cervical),
-                    direct(n + "_flexion", kX, deg(-15), deg(15), aaos + cervical),
-                    direct(n + "_twist", kY, deg(-20), deg(20), aaos + cervical)}});
-  }
-
-  for (const auto& [side, sign] : {std::pair{"l_", 1.0}, std::pair{"r_", -1.0}}) {
-    const std::string s(side);
-    out.push_back({s + "hip",
-                   {pick(mo, s + "hip_abduction"), pick(mo, s + "hip_flexion"),
-                    direct(s + "hip_twist", kY, deg(-45), deg(45),
-                           aaos + "hip medial rotation 45, lateral rotation 45 deg")}});
-    out.push_back({s + "knee", {pick(mo, s + "knee_flexion")}});
-    // Inversion turns the sole towards the midline: negative about +Z on the left foot.
-    out.push_back({s + "talocrural",
-                   {sided(s + "talocrural_inversion", kZ, sign, -35, 15,
-                          aaos + "inversion 35, eversion 15 deg (subtalar, lumped into the ankle)"),
-                    direct(s + "talocrural_flexion", kX, deg(-20), deg(50),
-                           aaos + "dorsiflexion 20, plantar flexion 50 deg")}});
-    out.push_back({s + "metatarsophalangeal_2",
-                   {direct(s + "metatarsophalangeal_2_flexion", kX, deg(-40), deg(40),
-                           aaos + "lesser toes MTP flexion 40, extension 40 deg")}});
-  }
-  for (const auto& [side, sign] : {std::pair{"l_", 1.0}, std::pair{"r_", -1.0}}) {
-    const std::string s(side);
-    const std::string neumann = "Neumann 2010, Kinesiology of the Musculoskeletal System, ch. 5: ";
-    out.push_back({s + "sternoclavicular",
-                   {sided(s + "sternoclavicular_elevation", kZ, sign, -10, 45,
-                          neumann + "elevation 45, depression 10 deg"),
-                    direct(s + "sternoclavicular_protraction", kY, deg(-15), deg(15),
-                           neumann + "protraction and retraction 15 deg each")}});
-    out.push_back({s + "shoulder",
-                   {pick(mo, s + "shoulder_abduction"), pick(mo, s + "shoulder_flexion"),
-                    pick(mo, s + "shoulder_twist")}});
-    out.push_back({s + "elbow", {pick(mo, s + "elbow_flexion")}});
-    // The hand hangs palm to thigh: flexion turns the fingers towards the midline (negative
-    // about +Z on the left), radial deviation towards the thumb in front (negative about +X).
-    // Gomez Jauregui's Table 2-1 keeps his avatar's wrists within 20 deg of flexion; real
-    // motion goes much further (CMU 131_01 bends its wrists by 35-43 deg on average).
-    out.push_back(
-        {s + "radiocarpal",
-         {sided(s + "radiocarpal_flexion", kZ, sign, -80, 70,
-                aaos + "wrist flexion 80, extension 70 deg"),
-          direct(s + "radiocarpal_pivot", kX, deg(-20), deg(30),
-                 aaos + "wrist radial deviation 20, ulnar deviation 30 deg"),
-          direct(s + "radiocarpal_twist", kY, deg(-80), deg(80),
-                 aaos + "forearm pronation 80, supination 80 deg (lumped into the wrist)")}});
-  }
-  return out;
-}
-
 std::string format(const char* fmt, double a, double b) {
   char buf[64];
   std::snprintf(buf, sizeof buf, fmt, a, b);
@@ -245,8 +145,14 @@ const std::vector<JointLimits>& gomez_joint_limits() {
   return table;
 }
 
+const std::filesystem::path& humanoid_limits_urdf() {
+  static const std::filesystem::path path = asset_dir() / "humanoid_limits.urdf";
+  return path;
+}
+
 const std::vector<JointLimits>& humanoid_joint_limits() {
-  static const std::vector<JointLimits> table = make_humanoid();
+  static const std::vector<JointLimits> table =
+      read_urdf_limits(humanoid_limits_urdf(), build_humanoid());
   return table;
 }
 

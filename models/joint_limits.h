@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <filesystem>
 #include <span>
 #include <string>
 #include <string_view>
@@ -38,9 +39,15 @@ struct JointLimits {
   std::vector<DofLimit> dofs;  // outermost first, axes a subsequence of Z, X, Y
 };
 
-// The limits simcap uses (URDF, inverse kinematics): every non-site joint of build_humanoid()
-// except humanoid_root. Moschini's Table 5.1 for neck (vc7), shoulders, elbows, hips and knees;
-// AAOS and other anatomical ranges for the rest, wrists included.
+// The shipped limits file, models/assets/humanoid_limits.urdf: every non-site joint of
+// build_humanoid() except humanoid_root, Moschini's Table 5.1 for neck (vc7), shoulders,
+// elbows, hips and knees, AAOS and other anatomical ranges for the rest, wrists included; each
+// revolute joint's source in the comment before it. Users pass an edited copy instead
+// (`simcap track --limits`, a scene's actors[i].limits); read_urdf_limits reads either.
+const std::filesystem::path& humanoid_limits_urdf();
+
+// The limits simcap uses (URDF, inverse kinematics) unless told otherwise: humanoid_limits_urdf()
+// read through urdfdom once. Throws Error naming the file when it is missing or invalid.
 const std::vector<JointLimits>& humanoid_joint_limits();
 
 // Moschini 2009, Table 5.1 (16 angles, "hard constraints" of the multi-camera tracker), mapped

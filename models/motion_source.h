@@ -18,8 +18,8 @@ struct ProceduralSpec {
   // on the spot).
   std::string kind = "walk_path";
   double duration_s = 4.0;
-  double speed_m_s = 1.2;     // walking speed (walk_path) or step rate scale (walk_in_place)
-  double path_radius = 1.0;   // metres (walk_path)
+  double speed_m_s = 1.2;    // walking speed (walk_path) or step rate scale (walk_in_place)
+  double path_radius = 1.0;  // metres (walk_path)
   // Total turn in degrees, counter-clockwise seen from above (turn).
   double turn_degrees = 360.0;
 };

@@ -3,6 +3,7 @@
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include <cstring>
 #include <functional>
 #include <map>
 #include <mutex>
@@ -90,13 +91,14 @@ std::string humanoid_urdf(const Skeleton& skeleton, const std::vector<JointLimit
       .set_value(
           comment_text(
               "simcap humanoid (H-Anim joint and segment names). Metres and radians; every frame "
-              "is "
-              "world-aligned in the neutral pose (+Y up, +Z the humanoid's front, +X its left). "
-              "Root link '" +
+              "is world-aligned in the neutral pose (+Y up, +Z the humanoid's front, +X its "
+              "left). Root link '" +
               link_name(skeleton, 0) +
-              "' is humanoid_root, which is free: give it a floating base. Limits and their "
-              "sources: "
-              "simcap models/joint_limits.md. Effort and velocity are placeholders.")
+              "' is humanoid_root, which is free: give it a floating base. The comment before "
+              "each revolute joint names the source of its limits; simcap reads them back with "
+              "the limits (edit lower and upper, keep the comment, and give the file to the "
+              "limits option of `simcap track` or to a scene's actors[i].limits). Effort and "
+              "velocity are placeholders.")
               .c_str());
   pugi::xml_node robot = doc.append_child("robot");
   robot.append_attribute("name") = "simcap_humanoid";
@@ -160,7 +162,8 @@ void write_humanoid_urdf(const std::filesystem::path& path, const Skeleton& skel
 std::vector<JointLimits> read_urdf_limits(const std::filesystem::path& path,
                                           const Skeleton& skeleton) {
   std::string messages;
-  const urdf::ModelInterfaceSharedPtr model = parse_urdf(read_text(path), &messages);
+  const std::string text = read_text(path);
+  const urdf::ModelInterfaceSharedPtr model = parse_urdf(text, &messages);
   if (!model) throw_input_error(path, 0, "", "not a valid URDF: " + messages);
 
   // The H-Anim joint a DOF belongs to: the longest movable joint name that prefixes "<joint>_".
@@ -177,8 +180,28 @@ std::vector<JointLimits> read_urdf_limits(const std::filesystem::path& path,
     return best;
   };
 
+  // The source of each DOF: the comment "<dof>: <source>" the writer puts before its joint.
+  std::map<std::string, std::string> sources;
+  {
+    pugi::xml_document doc;
+    doc.load_string(text.c_str(), pugi::parse_default | pugi::parse_comments);
+    std::string previous;
+    for (const pugi::xml_node& node : doc.child("robot").children()) {
+      if (node.type() == pugi::node_comment) {
+        previous = node.value();
+        previous.erase(0, previous.find_first_not_of(' '));
+        previous.erase(previous.find_last_not_of(' ') + 1);
+        continue;
+      }
+      const std::string name = node.attribute("name").value();
+      if (std::strcmp(node.name(), "joint") == 0 && previous.starts_with(name + ": ")) {
+        sources[name] = previous.substr(name.size() + 2);
+      }
+      previous.clear();
+    }
+  }
   std::map<int, JointLimits> grouped;
-  const std::string source = "URDF " + path.string();
+  const std::string file_source = "URDF " + path.string();
   // Depth-first from the root, so each H-Anim joint's DOFs arrive in chain order.
   std::function<void(const urdf::LinkConstSharedPtr&)> walk = [&](const auto& link) {
     for (const urdf::JointSharedPtr& joint : link->child_joints) {
@@ -197,8 +220,9 @@ std::vector<JointLimits> read_urdf_limits(const std::filesystem::path& path,
         }
         JointLimits& entry = grouped[j];
         entry.joint = skeleton[j].name;
-        entry.dofs.push_back(
-            {joint->name, axis, joint->limits->lower, joint->limits->upper, source});
+        const auto it = sources.find(joint->name);
+        entry.dofs.push_back({joint->name, axis, joint->limits->lower, joint->limits->upper,
+                              it == sources.end() ? file_source : it->second});
       } else if (joint->type != urdf::Joint::FIXED) {
         throw_input_error(path, 0, field,
                           "has a type other than revolute or fixed, which simcap cannot limit");

@@ -29,10 +29,11 @@ void write_humanoid_urdf(const std::filesystem::path& path, const Skeleton& skel
                          const std::vector<JointLimits>& limits);
 
 // The joint limits stored in a URDF written for `skeleton`'s joint names, grouped per H-Anim
-// joint in skeleton order, each DOF's source set to the file. Throws Error naming the file (and
-// the joint) when the file is not valid URDF (urdfdom's message, e.g. a revolute joint without
-// <limit>), a revolute joint does not belong to a non-site joint of the skeleton, a joint is of
-// another movable type, or an axis is not +X, +Y or +Z.
+// joint in skeleton order, each DOF's source taken from the comment "<dof>: <source>" just
+// before its joint (as humanoid_urdf writes it), or "URDF <file>" without one. Throws Error naming
+// the file (and the joint) when the file is not valid URDF (urdfdom's message, e.g. a revolute
+// joint without <limit>), a revolute joint does not belong to a non-site joint of the skeleton, a
+// joint is of another movable type, or an axis is not +X, +Y or +Z.
 std::vector<JointLimits> read_urdf_limits(const std::filesystem::path& path,
                                           const Skeleton& skeleton);
 

@@ -12,9 +12,9 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/rig.h"
+#include "models/shipped_assets.h"
 #include "scenes/scene.h"
 #include "scenes/scene_names.h"
-#include "scenes/shipped_files.h"
 #include "scenes/yaml_field.h"
 #include "scenes/yaml_overrides.h"
 
@@ -81,7 +81,7 @@ class SceneReader {
 };
 
 std::filesystem::path SceneReader::read_file(const Field& f) const {
-  const std::filesystem::path path = resolve_scene_file(f.text(), scene_dir_);
+  const std::filesystem::path path = resolve_asset_path(f.text(), scene_dir_);
   if (!std::filesystem::is_regular_file(path)) {
     f.fail("expected an existing file; '" + path.string() + "' does not exist (relative paths " +
            "start at the scene file's folder, 'asset:' paths at " + asset_dir().string() + ")");

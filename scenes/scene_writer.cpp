@@ -2,9 +2,9 @@
 
 #include <numbers>
 
+#include "models/shipped_assets.h"
 #include "scenes/scene.h"
 #include "scenes/scene_names.h"
-#include "scenes/shipped_files.h"
 #include "scenes/yaml_field.h"
 
 namespace simcap {
@@ -25,7 +25,7 @@ void text(YAML::Emitter& out, std::string_view key, const std::string& v) {
 }
 
 void file(YAML::Emitter& out, std::string_view key, const std::filesystem::path& path) {
-  text(out, key, scene_file_text(path));
+  text(out, key, asset_path_text(path));
 }
 
 template <typename Vector>

@@ -9,6 +9,7 @@
 #include "core/atomic_file.h"
 #include "models/body_mesh.h"
 #include "models/humanoid.h"
+#include "models/joint_limits.h"
 #include "tests/support/temp_dir.h"
 
 namespace simcap {
@@ -141,6 +142,14 @@ TEST(ModelCli, ShippedLimitTableIsCurrent) {
   ASSERT_EQ(run_simcap("model limits", &out), 0);
   EXPECT_EQ(out, read_text(std::filesystem::path(SIMCAP_SOURCE_DIR) / "models/joint_limits.md"))
       << "regenerate with: simcap model limits -o models/joint_limits.md";
+}
+
+TEST(ModelCli, ShippedLimitsUrdfIsWhatModelUrdfWrites) {
+  TempDir dir;
+  std::string out;
+  ASSERT_EQ(run_simcap("model urdf -o " + (dir / "h.urdf").string(), &out), 0) << out;
+  EXPECT_EQ(read_text(dir / "h.urdf"), read_text(humanoid_limits_urdf()))
+      << "regenerate with: simcap model urdf -o models/assets/humanoid_limits.urdf";
 }
 
 TEST(ModelCli, HelpShowsExamples) {

@@ -7,7 +7,7 @@
 
 #include "core/rig.h"
 #include "scenes/scene.h"
-#include "scenes/shipped_files.h"
+#include "models/shipped_assets.h"
 #include "tests/scenes/scene_test_support.h"
 #include "tests/support/temp_dir.h"
 
@@ -310,10 +310,10 @@ TEST(SceneLoader, ShippedScenePathFindsTheDefault) {
 
 TEST(SceneLoader, AssetPathsAreWrittenBackWithThePrefix) {
   const auto clip = asset_dir() / "cmu_131_01_start_walk_stop.bvh";
-  EXPECT_EQ(scene_file_text(clip), "asset:cmu_131_01_start_walk_stop.bvh");
-  EXPECT_EQ(resolve_scene_file("asset:cmu_131_01_start_walk_stop.bvh", "/elsewhere"), clip);
-  EXPECT_EQ(scene_file_text("/data/clip.bvh"), "/data/clip.bvh");
-  EXPECT_EQ(resolve_scene_file("../b/c.png", "/a/s"), std::filesystem::path("/a/b/c.png"));
+  EXPECT_EQ(asset_path_text(clip), "asset:cmu_131_01_start_walk_stop.bvh");
+  EXPECT_EQ(resolve_asset_path("asset:cmu_131_01_start_walk_stop.bvh", "/elsewhere"), clip);
+  EXPECT_EQ(asset_path_text("/data/clip.bvh"), "/data/clip.bvh");
+  EXPECT_EQ(resolve_asset_path("../b/c.png", "/a/s"), std::filesystem::path("/a/b/c.png"));
 }
 
 }  // namespace

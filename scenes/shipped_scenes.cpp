@@ -1,33 +1,12 @@
-#include "scenes/shipped_files.h"
+#include "scenes/scene.h"
 
 #include <algorithm>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
-#include "scenes/scene.h"
 
 namespace simcap {
-
-std::filesystem::path asset_dir() {
-  return std::filesystem::path(SIMCAP_ASSET_DIR);
-}
-
-std::filesystem::path resolve_scene_file(std::string_view text,
-                                         const std::filesystem::path& scene_dir) {
-  if (text.starts_with(kAssetPrefix)) {
-    return (asset_dir() / text.substr(kAssetPrefix.size())).lexically_normal();
-  }
-  return std::filesystem::absolute(scene_dir / text).lexically_normal();
-}
-
-std::string scene_file_text(const std::filesystem::path& path) {
-  const std::filesystem::path rel = path.lexically_relative(asset_dir().lexically_normal());
-  if (!rel.empty() && rel != "." && *rel.begin() != "..") {
-    return std::string(kAssetPrefix) + rel.generic_string();
-  }
-  return path.string();
-}
 
 std::filesystem::path shipped_scene_path(std::string_view name) {
   const std::filesystem::path dir(SIMCAP_SCENE_DIR);
