@@ -58,6 +58,9 @@ struct Actor {
       Rgb{0.85f, 0.66f, 0.53f}, Rgb{0.20f, 0.35f, 0.65f}, Rgb{0.25f, 0.25f, 0.30f},
       Rgb{0.10f, 0.10f, 0.10f}, Rgb{0.25f, 0.17f, 0.10f}};  // skin, shirt, trousers, shoes, hair
   MotionSource motion;
+  // Joint limits for this actor's trackers (a URDF as models/assets/humanoid_limits.urdf);
+  // empty: the shipped ones.
+  std::filesystem::path limits;
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();  // added to the motion's root path
   double yaw_rad = 0.0;                              // rotation of the whole motion about +Y
   double time_offset_s = 0.0;                        // the actor's clock starts this much later

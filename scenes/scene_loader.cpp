@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/rig.h"
 #include "models/shipped_assets.h"
+#include "models/urdf_io.h"
 #include "scenes/scene.h"
 #include "scenes/scene_names.h"
 #include "scenes/yaml_field.h"
@@ -408,6 +409,14 @@ Actor SceneReader::read_actor(const Field& f, int index) const {
     c.finish();
   }
   a.motion = read_motion(m.require("motion"));
+  if (auto v = m.take("limits")) {
+    a.limits = read_file(*v);
+    try {
+      read_urdf_limits(a.limits, build_humanoid());
+    } catch (const Error& e) {
+      v->fail(e.what());
+    }
+  }
   if (auto v = m.take("offset")) a.offset = v->vector3(yaml::any_finite());
   if (auto v = m.take("yaw_deg")) a.yaw_rad = v->number(yaml::any_finite()) * kDegToRad;
   if (auto v = m.take("time_offset")) a.time_offset_s = v->number(yaml::any_finite());

@@ -142,6 +142,7 @@ void write_actor(YAML::Emitter& out, const Actor& a) {
   for (int r = 0; r < kMaterialRegionCount; ++r) vector(out, scene_names::kRegions[r], a.colors[r]);
   out << YAML::EndMap;
   write_motion(out, a.motion);
+  if (!a.limits.empty()) file(out, "limits", a.limits);
   vector(out, "offset", a.offset);
   number(out, "yaw_deg", a.yaw_rad * kRadToDeg);
   number(out, "time_offset", a.time_offset_s);

@@ -65,6 +65,11 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
   add_choice(cmd, "--occlusion", o.moschini.occlusion, kOnOff,
              "moschini: on (learn where scene objects hide the person from a camera, which then "
              "abstains there from carving the hull) or off (every camera carves everywhere)");
+  cmd->add_option("--limits", o.moschini.limits,
+                  "moschini: joint limits of the urdf joint set from this URDF (an edited copy of "
+                  "models/assets/humanoid_limits.urdf); default: the dataset scene's "
+                  "actors[0].limits, else that file")
+      ->check(CLI::ExistingFile);
   cmd->add_flag("--oracle", o.moschini.oracle,
                 "moschini: start every frame from its ground-truth pose (a diagnostic: the error "
                 "left is the body model's and the cues', not the search's)");

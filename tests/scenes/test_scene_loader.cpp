@@ -5,9 +5,10 @@
 
 #include <numbers>
 
+#include "core/atomic_file.h"
 #include "core/rig.h"
-#include "scenes/scene.h"
 #include "models/shipped_assets.h"
+#include "scenes/scene.h"
 #include "tests/scenes/scene_test_support.h"
 #include "tests/support/temp_dir.h"
 
@@ -314,6 +315,22 @@ TEST(SceneLoader, AssetPathsAreWrittenBackWithThePrefix) {
   EXPECT_EQ(resolve_asset_path("asset:cmu_131_01_start_walk_stop.bvh", "/elsewhere"), clip);
   EXPECT_EQ(asset_path_text("/data/clip.bvh"), "/data/clip.bvh");
   EXPECT_EQ(resolve_asset_path("../b/c.png", "/a/s"), std::filesystem::path("/a/b/c.png"));
+}
+
+TEST(SceneLoader, ActorLimitsAreAUrdfTheLoaderChecks) {
+  TempDir dir;
+  const auto ok = testing::write_scene(
+      dir.path(),
+      "actors:\n  - motion: {procedural: stand}\n    limits: asset:humanoid_limits.urdf\n");
+  const Scene s = load_scene(ok);
+  EXPECT_EQ(s.actors[0].limits, asset_dir() / "humanoid_limits.urdf");
+  EXPECT_NE(scene_to_yaml(s).find("limits: \"asset:humanoid_limits.urdf\""), std::string::npos);
+  write_text_atomic(dir / "bad.urdf", "<robot name=\"x\"><joint");
+  const auto bad = testing::write_scene(
+      dir.path(), "actors:\n  - motion: {procedural: stand}\n    limits: bad.urdf\n");
+  const std::string e = testing::load_error(bad);
+  EXPECT_NE(e.find(":3: actors[0].limits: "), std::string::npos) << e;
+  EXPECT_NE(e.find("bad.urdf: not a valid URDF"), std::string::npos) << e;
 }
 
 }  // namespace

@@ -152,4 +152,18 @@ std::optional<Eigen::AlignedBox3d> Dataset::room() const {
   }
 }
 
+std::optional<std::string> Dataset::actor_limits() const {
+  const fs::path path = root_ / "scene.yaml";
+  if (!fs::is_regular_file(path)) return std::nullopt;
+  try {
+    const YAML::Node actors = YAML::LoadFile(path.string())["actors"];
+    if (!actors || !actors.IsSequence() || actors.size() == 0) return std::nullopt;
+    const YAML::Node limits = actors[0]["limits"];
+    if (!limits) return std::nullopt;
+    return limits.as<std::string>();
+  } catch (const YAML::Exception& e) {
+    throw_input_error(path, e.mark.line + 1, "actors[0].limits", e.msg);
+  }
+}
+
 }  // namespace simcap::tracker

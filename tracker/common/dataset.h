@@ -45,6 +45,9 @@ class Dataset {
   // The room's interior from scene.yaml (room.size, centred on x = z = 0, floor at y = 0), when
   // the file says.
   std::optional<Eigen::AlignedBox3d> room() const;
+  // The joint-limits file scene.yaml names for its first actor (actors[0].limits), as written
+  // there ("asset:<name>" or a path), when it names one.
+  std::optional<std::string> actor_limits() const;
 
  private:
   cv::Mat read(const std::filesystem::path& path, int camera, int flags) const;

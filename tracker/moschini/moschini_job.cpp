@@ -14,6 +14,8 @@
 #include "core/joint_track.h"
 #include "core/progress.h"
 #include "models/humanoid.h"
+#include "models/shipped_assets.h"
+#include "models/urdf_io.h"
 #include "tracker/common/dataset.h"
 #include "tracker/moschini/auto_start.h"
 #include "tracker/moschini/inspection.h"
@@ -24,6 +26,20 @@ namespace simcap::tracker {
 namespace fs = std::filesystem;
 
 namespace {
+
+// The URDF whose limits the urdf joint set takes, or empty for the shipped ones.
+std::filesystem::path limits_file(const Dataset& ds, const MoschiniOptions& options) {
+  if (!options.limits.empty()) {
+    if (options.joints == JointSet::moschini) {
+      throw Error("--limits " + options.limits.string() +
+                  ": the moschini joint set keeps Table 5.1's limits; use --joints urdf");
+    }
+    return options.limits;
+  }
+  const std::optional<std::string> text = ds.actor_limits();
+  if (!text || options.joints == JointSet::moschini) return {};
+  return resolve_asset_path(*text, ds.root());
+}
 
 // The hull's working volume: the room from scene.yaml kept 10 cm off the walls and below
 // 2.3 m (no one is taller), else Moschini-sized defaults around the origin.
@@ -78,6 +94,14 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
 
   TrackerOptions topt;
   topt.joints = options.joints;
+  if (const std::filesystem::path limits = limits_file(ds, options); !limits.empty()) {
+    topt.urdf_limits = read_urdf_limits(limits, build_humanoid());
+    try {
+      StickModel(BodyDimensions{}, topt.joints, topt.urdf_limits);
+    } catch (const Error& e) {
+      throw_input_error(limits, 0, "", e.what());
+    }
+  }
   topt.use_filter = options.filter == MotionFilter::ekf;
   topt.traversal = options.traversal;
   std::optional<MoschiniTracker> tracker;
@@ -96,7 +120,7 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
     const std::string source = ds.ground_truth_path().string();
     const NamedJoints joints = joints_at(gt, frames.front(), source);
     BodyDimensions dims = dimensions_from_joints(joints, source);
-    const StickModel plain(dims, topt.joints);
+    const StickModel plain(dims, topt.joints, topt.urdf_limits);
     const StickPose start = pose_from_joints(plain, joints, source);
     Observation first = perception.observe(frames.front());
     if (occlusion) {
@@ -123,7 +147,7 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
       throw Error(dataset_path.string() + ": " + e.what());
     }
     // The capsules are fitted to the first pose; the tracker restarts with them.
-    const StickModel model(start.dims, topt.joints);
+    const StickModel model(start.dims, topt.joints, topt.urdf_limits);
     const BodySurface surface = fit_surface(model, start.pose, typical_surface(start.dims),
                                             first.front().rays, first.front().views);
     if (popt.colours) perception.set_appearance({model, surface, start.pose, first.front().rays});

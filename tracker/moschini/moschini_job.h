@@ -44,6 +44,11 @@ struct MoschiniOptions {
   // gt/joints3d.csv): what is left is the error of the body model and the cues, without the
   // search's.
   bool oracle = false;
+  // URDF joint limits of the urdf joint set (read_urdf_limits; `simcap track --limits`). Empty:
+  // the dataset's scene.yaml actors[0].limits when it names one, else the shipped
+  // humanoid_limits.urdf. An explicit file with the moschini joint set is an error (that set
+  // keeps Table 5.1).
+  std::filesystem::path limits;
   // Frames to lay open in TRACK/diagnostics/inspect/FRAME/ (inspection.h).
   std::vector<int> inspect;
   bool quiet = false;

@@ -19,7 +19,7 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
 
 MoschiniTracker::MoschiniTracker(const BodyDimensions& dims, const BodySurface& surface,
                                  const TrackerOptions& options)
-    : model_(dims, options.joints),
+    : model_(dims, options.joints, options.urdf_limits),
       surface_(surface),
       options_(options),
       icp_(model_, surface, options.icp),

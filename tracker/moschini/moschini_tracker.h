@@ -34,6 +34,8 @@ struct RecoveryOptions {
 
 struct TrackerOptions {
   JointSet joints = JointSet::urdf;
+  // The urdf joint set's limits (MoschiniOptions::limits read through urdfdom).
+  std::vector<JointLimits> urdf_limits = humanoid_joint_limits();
   // The hypotheses' refinements need only find the right basin: a quarter of the rays and a
   // coarser outline.
   IcpOptions icp = [] {

@@ -61,12 +61,6 @@ const JointTable& joint_specs(JointSet set) {
   return set == JointSet::moschini ? moschini : urdf;
 }
 
-// Each angle's axis (0 = X, 1 = Y, 2 = Z) and range, read from the shared limits table once.
-struct AngleTable {
-  std::array<int, kMaxAngles> axis{};
-  std::array<AngleRange, kMaxAngles> range{};
-};
-
 // The thoracolumbar joints as one: per axis, the sum of their ranges.
 JointLimits lumped_spine(const std::vector<JointLimits>& source) {
   JointLimits spine{"spine", {}};
@@ -90,9 +84,9 @@ JointLimits lumped_spine(const std::vector<JointLimits>& source) {
   return spine;
 }
 
-AngleTable make_angle_table(JointSet set) {
+AngleTable make_angle_table(JointSet set, const std::vector<JointLimits>& urdf_limits) {
   const std::vector<JointLimits>& source =
-      set == JointSet::moschini ? simcap::moschini_joint_limits() : humanoid_joint_limits();
+      set == JointSet::moschini ? simcap::moschini_joint_limits() : urdf_limits;
   // The axes set_segment_rotation() solves for, by DOF count: X (hinge), Z X (swing), Z X Y.
   static constexpr std::array<std::array<int, 3>, 4> order = {{{}, {0}, {2, 0}, {2, 0, 1}}};
   AngleTable t;
@@ -111,8 +105,9 @@ AngleTable make_angle_table(JointSet set) {
                                              })
                               : std::vector<DofLimit>::const_iterator{};
       if (!limits || dof == limits->dofs.end()) {
-        throw Error(std::string("stick model: models/joint_limits.h has no ") + "XYZ"[axis] +
-                    " DOF for '" + spec.name + "'");
+        throw Error(std::string("the joint limits have no ") + "XYZ"[axis] + " DOF for '" +
+                    spec.name + "', which the stick model's " +
+                    std::string(name_of(kJointSets, set)) + " joint set moves");
       }
       const int k = spec.angles[i];
       t.axis[k] = axis;
@@ -120,12 +115,6 @@ AngleTable make_angle_table(JointSet set) {
     }
   }
   return t;
-}
-
-const AngleTable& angle_table(JointSet set) {
-  static const AngleTable moschini = make_angle_table(JointSet::moschini);
-  static const AngleTable urdf = make_angle_table(JointSet::urdf);
-  return set == JointSet::moschini ? moschini : urdf;
 }
 
 // How far `angles` lie outside their ranges, and how far they are from `previous`; candidates
@@ -238,12 +227,16 @@ Eigen::Matrix3d axis_rotation(int axis, double angle) {
   return Eigen::AngleAxisd(angle, Eigen::Vector3d::Unit(axis)).toRotationMatrix();
 }
 
-StickModel::StickModel(const BodyDimensions& dims, JointSet joints) : dims_(dims), joints_(joints) {
+StickModel::StickModel(const BodyDimensions& dims, JointSet joints,
+                       const std::vector<JointLimits>& urdf_limits)
+    : dims_(dims),
+      joints_(joints),
+      table_(std::make_shared<const AngleTable>(make_angle_table(joints, urdf_limits))) {
   dims_.validate();
 }
 
 const std::array<AngleRange, kMaxAngles>& StickModel::ranges() const {
-  return angle_table(joints_).range;
+  return table_->range;
 }
 
 std::vector<int> StickModel::chain_angles(int segment) const {
@@ -348,7 +341,7 @@ StickGeometry StickModel::geometry(const StickPose& pose) const {
     const JointSpec& spec = joint_specs(joints_)[s];
     for (int i = 0; i < spec.count; ++i) {
       const int k = spec.angles[i];
-      const int axis = angle_table(joints_).axis[k];
+      const int axis = table_->axis[k];
       g.axis[k] = R.col(axis);
       g.pivot[k] = joint;
       R = R * axis_rotation(axis, pose.theta[k]);

@@ -6,11 +6,13 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/name_table.h"
+#include "models/joint_limits.h"
 
 namespace simcap::tracker {
 
@@ -188,9 +190,19 @@ struct StickGeometry {
   std::array<Eigen::Vector3d, kMaxAngles> pivot;
 };
 
+// Each angle's axis (0 = X, 1 = Y, 2 = Z) and range.
+struct AngleTable {
+  std::array<int, kMaxAngles> axis{};
+  std::array<AngleRange, kMaxAngles> range{};
+};
+
 class StickModel {
  public:
-  StickModel(const BodyDimensions& dims, JointSet joints);
+  // The urdf joint set takes its ranges from `urdf_limits` (read_urdf_limits of a user's file,
+  // by default the shipped humanoid_limits.urdf); the moschini set from Table 5.1. Throws Error
+  // when the limits lack a DOF the joint set moves.
+  StickModel(const BodyDimensions& dims, JointSet joints,
+             const std::vector<JointLimits>& urdf_limits = humanoid_joint_limits());
   const BodyDimensions& dimensions() const { return dims_; }
   JointSet joint_set() const { return joints_; }
   int angle_count() const { return joints_ == JointSet::moschini ? kMoschiniAngles : kMaxAngles; }
@@ -247,6 +259,7 @@ class StickModel {
  private:
   BodyDimensions dims_;
   JointSet joints_;
+  std::shared_ptr<const AngleTable> table_;  // shared by copies of the model
 };
 
 // The joints of StickModel::joint_rotations(), in its order.

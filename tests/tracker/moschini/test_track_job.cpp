@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iterator>
 #include <opencv2/core.hpp>
@@ -11,6 +12,7 @@
 #include "core/image_io.h"
 #include "core/joint_track.h"
 #include "models/humanoid.h"
+#include "models/joint_limits.h"
 #include "tests/support/temp_dir.h"
 #include "tests/tracker/capsule_dataset.h"
 #include "tracker/common/dataset.h"
@@ -75,6 +77,81 @@ TEST(TrackJob, TracksTheCapsuleBodyWithGroundTruthSilhouettes) {
   // Every capsule of this dataset has one colour: the appearance model rules nothing out.
   ASSERT_EQ(run_track(out / "v", "--appearance off"), 0);
   EXPECT_EQ(read_text(out / "t" / "joints3d.csv"), read_text(out / "v" / "joints3d.csv"));
+}
+
+// The largest elbow bend of a track (the angle between upper arm and forearm), radians.
+double max_elbow_bend(const fs::path& track_file) {
+  const JointTrack t = read_joint_track(track_file);
+  double most = 0;
+  for (const auto& p : t.positions) {
+    for (const char* side : {"l_", "r_"}) {
+      const std::string s(side);
+      const Eigen::Vector3d upper =
+          p[t.joint_index(s + "elbow")] - p[t.joint_index(s + "shoulder")];
+      const Eigen::Vector3d fore =
+          p[t.joint_index(s + "radiocarpal")] - p[t.joint_index(s + "elbow")];
+      most = std::max(most,
+                      std::acos(std::clamp(upper.normalized().dot(fore.normalized()), -1.0, 1.0)));
+    }
+  }
+  return most;
+}
+
+// The shipped limits with both elbows held within 0.05 rad of straight.
+std::string straight_elbows_urdf() {
+  std::string text = read_text(humanoid_limits_urdf());
+  for (const char* side : {"l", "r"}) {
+    const size_t joint = text.find("name=\"" + std::string(side) + "_elbow_flexion\"");
+    const std::string lower = "lower=\"-3.141592653589793\"";
+    const size_t at = text.find(lower, joint);
+    EXPECT_NE(at, std::string::npos);
+    text.replace(at, lower.size(), "lower=\"-0.05\"");
+  }
+  return text;
+}
+
+TEST(TrackJob, UrdfLimitsFromTheCommandLineOrTheSceneBindTheJoints) {
+  TempDir out;
+  write_text_atomic(out / "straight.urdf", straight_elbows_urdf());
+  std::string log;
+  ASSERT_EQ(run_track(out / "default", "", &log), 0) << log;
+  ASSERT_EQ(run_track(out / "t", "--limits " + (out / "straight.urdf").string(), &log), 0) << log;
+  EXPECT_GT(max_elbow_bend(out / "default" / "joints3d.csv"), 0.3);  // the capsules bend them
+  EXPECT_LT(max_elbow_bend(out / "t" / "joints3d.csv"), 0.05 + 1e-6);
+  // The same file named by the dataset's scene (actors[0].limits) gives the same track.
+  const fs::path copy = out / "with_limits";
+  fs::copy(dataset(), copy, fs::copy_options::recursive);
+  write_text_atomic(copy / "scene.yaml",
+                    "actors:\n  - limits: " + (out / "straight.urdf").string() + "\n");
+  ASSERT_EQ(run_simcap("track " + copy.string() + " -o " + (out / "s").string() + " --quiet", &log),
+            0)
+      << log;
+  EXPECT_EQ(read_text(out / "t" / "joints3d.csv"), read_text(out / "s" / "joints3d.csv"));
+}
+
+TEST(TrackJob, BadLimitsAreRefusedWithoutOutput) {
+  TempDir out;
+  std::string log;
+  write_text_atomic(out / "bad.urdf", "<robot name=\"x\"><joint name=\"l_elbow_flexion\"");
+  EXPECT_NE(run_track(out / "t", "--limits " + (out / "bad.urdf").string(), &log), 0);
+  EXPECT_NE(log.find("bad.urdf"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(out / "t"));
+  // A URDF without the knees' DOF cannot drive the urdf joint set.
+  std::string text = read_text(humanoid_limits_urdf());
+  const size_t at = text.find("name=\"l_knee_flexion\" type=\"revolute\"");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, std::string("name=\"l_knee_flexion\" type=\"revolute\"").size(),
+               "name=\"l_knee_flexion\" type=\"fixed\"");
+  write_text_atomic(out / "no_knee.urdf", text);
+  EXPECT_NE(run_track(out / "t", "--limits " + (out / "no_knee.urdf").string(), &log), 0);
+  EXPECT_NE(log.find("no_knee.urdf"), std::string::npos) << log;
+  EXPECT_NE(log.find("l_knee"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(out / "t"));
+  write_text_atomic(out / "straight.urdf", straight_elbows_urdf());
+  EXPECT_NE(
+      run_track(out / "t", "--joints moschini --limits " + (out / "straight.urdf").string(), &log),
+      0);
+  EXPECT_NE(log.find("Table 5.1"), std::string::npos) << log;
 }
 
 // --inspect lays a frame open without changing the track; a frame the dataset lacks is refused
