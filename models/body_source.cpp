@@ -14,17 +14,16 @@ BodySource body_file_source(const std::filesystem::path& file) {
                  [](unsigned char c) { return std::tolower(c); });
   BodySource source;
   source.file = file;
-  if (extension == ".x3d") {
-    source.format = BodyFormat::x3d;
-    return source;
-  }
-  throw_input_error(file, 0, "", "unknown body format '" + extension + "' (expected .x3d)");
+  source.format = extension == ".x3d" ? BodyFormat::x3d : BodyFormat::mesh;
+  return source;
 }
 
 Body build_body(const BodySource& source) {
   switch (source.format) {
     case BodyFormat::x3d:
       return read_x3d_humanoid(source.file);
+    case BodyFormat::mesh:
+      return read_rigged_mesh(source.file, source.rigged);
     case BodyFormat::humanoid:
       break;
   }

@@ -220,11 +220,12 @@ Body finish_imported_body(SkinnedSkeleton found, const std::filesystem::path& fi
     const Eigen::Vector3f p = found.vertices[v];
     std::vector<std::pair<int, float>> w;
     for (const auto& [joint, weight] : found.weights[v]) {
+      if (!(weight > 0)) continue;
       if (joint < 0 || joint >= skeleton.size() || skeleton[joint].is_site) {
         throw Error(where + "vertex " + std::to_string(v) + " is weighted to joint " +
                     std::to_string(joint) + ", which is not a joint of the skeleton");
       }
-      if (weight > 0) w.emplace_back(joint, weight);
+      w.emplace_back(joint, weight);
     }
     if (w.empty()) {
       ++unweighted;

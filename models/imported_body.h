@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "models/body.h"
 #include "models/body_mesh.h"
-#include "models/body_source.h"
 #include "models/skeleton.h"
 
 namespace simcap {

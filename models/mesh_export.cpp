@@ -20,7 +20,7 @@ struct Format {
 };
 // ASCII PLY: Assimp 5.2's binary PLY exporter writes vertex colours as floats under a uchar
 // header, which no reader can parse.
-constexpr Format kFormats[] = {{".obj", "obj"}, {".ply", "ply"}, {".glb", "glb2"}};
+constexpr Format kFormats[] = {{".obj", "obj"}, {".ply", "ply"}};
 
 // One aiMesh (with its material and node) per material region that has triangles.
 std::unique_ptr<aiScene> make_scene(
@@ -135,7 +135,7 @@ void export_body_mesh(const std::filesystem::path& path, const BodyMesh& mesh,
   }
   if (!format) {
     throw_input_error(path, 0, "",
-                      "unknown mesh format '" + extension + "' (expected .obj, .ply or .glb)");
+                      "unknown mesh format '" + extension + "' (expected .obj or .ply)");
   }
   if (!positions.empty() && positions.size() < 3 * mesh.vertices.size()) {
     throw Error("mesh export: " + std::to_string(positions.size()) + " posed coordinates for " +

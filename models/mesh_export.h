@@ -1,5 +1,6 @@
-// Export of a body mesh, neutral or posed, to OBJ, PLY or binary glTF through Assimp's exporter,
-// one sub-mesh per material region, so that it opens in Blender or MeshLab for inspection.
+// Export of a body mesh, neutral or posed, to OBJ or PLY through Assimp's exporter, one
+// sub-mesh per material region, so that it opens in Blender or MeshLab for inspection. (Rigged
+// binary glTF, with skeleton and skin: models/body_gltf.h.)
 #pragma once
 
 #include <Eigen/Core>
@@ -12,7 +13,7 @@
 namespace simcap {
 
 // Writes `mesh` to `path`, choosing the format from the extension: ".obj" (with a .mtl next to
-// it), ".ply" (ASCII, vertex colours), ".glb" (binary glTF 2). `positions` holds 3 floats per
+// it) or ".ply" (ASCII, vertex colours). `positions` holds 3 floats per
 // vertex (Skinner::skin output) or is empty for the neutral pose. `colors` are sRGB in [0, 1] per
 // MaterialRegion. All files appear at once or not at all (written to a temporary folder next to
 // `path`, then renamed). Throws Error naming the file for an unknown extension or a failed write.

@@ -368,11 +368,31 @@ MotionSource SceneReader::read_motion(const Field& f) const {
 
 void SceneReader::read_body_file(const Field& f, BodySource& body) const {
   Map m(f);
+  if (m.has("x3d") == m.has("mesh")) {
+    f.expected("a map with one of 'x3d: <an H-Anim X3D file>' or 'mesh: <a rigged mesh>'");
+  }
   if (auto v = m.take("x3d")) {
     body.format = BodyFormat::x3d;
     body.file = read_file(*v);
   } else {
-    f.expected("a map with 'x3d: <an H-Anim X3D file>'");
+    body.format = BodyFormat::mesh;
+    body.file = read_file(*m.take("mesh"));
+    if (auto v = m.take("joint_map")) {
+      const auto& names = kJointNamings;
+      const auto it = std::find_if(names.begin(), names.end(), [&](const auto& n) {
+        return v->is_scalar() && n.first == v->node().Scalar();
+      });
+      if (it == names.end()) v->expected("one of " + choices_text(kJointNamings));
+      body.rigged.naming = it->second;
+    }
+    if (auto v = m.take("units")) {
+      if (v->is_scalar() && v->node().Scalar() == "auto") {
+        body.rigged.metres_per_unit = 0.0;
+      } else {
+        if (!v->is_scalar()) v->expected("'auto' or metres per file unit (a number > 0)");
+        body.rigged.metres_per_unit = v->number(yaml::positive(1000));
+      }
+    }
   }
   m.finish();
 }

@@ -129,6 +129,16 @@ void write_actor(YAML::Emitter& out, const Actor& a) {
     out << YAML::Key << "body" << YAML::Value << YAML::BeginMap;
     file(out, "x3d", a.body.file);
     out << YAML::EndMap;
+  } else if (a.body.format == BodyFormat::mesh) {
+    out << YAML::Key << "body" << YAML::Value << YAML::BeginMap;
+    file(out, "mesh", a.body.file);
+    text(out, "joint_map", std::string(name_of(kJointNamings, a.body.rigged.naming)));
+    if (a.body.rigged.metres_per_unit > 0) {
+      number(out, "units", a.body.rigged.metres_per_unit);
+    } else {
+      out << YAML::Key << "units" << YAML::Value << "auto";
+    }
+    out << YAML::EndMap;
   } else {
     number(out, "height", a.body.parameters.height);
     number(out, "girth", a.body.shape.girth);

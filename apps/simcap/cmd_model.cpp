@@ -6,14 +6,17 @@
 #include <memory>
 #include <numbers>
 
+#include "apps/simcap/choice_option.h"
 #include "apps/simcap/commands.h"
 #include "apps/simcap/number_checks.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "models/body_gltf.h"
 #include "models/body_mesh.h"
 #include "models/body_source.h"
 #include "models/humanoid.h"
 #include "models/joint_limits.h"
+#include "models/joint_names.h"
 #include "models/mesh_export.h"
 #include "models/motion_source.h"
 #include "models/pose.h"
@@ -28,6 +31,7 @@ struct ModelOptions {
   double height = 1.75;
   double girth = 1.0;
   std::string body;  // a body file instead of the humanoid
+  JointNaming rig_names = JointNaming::hanim;
   std::string bvh;
   std::string procedural;
   double time_s = 0.0;
@@ -151,6 +155,16 @@ int mesh(const ModelOptions& o) {
     pose.rotations[j] = dof_rotation(*limits, angles);
   }
   const BodyMesh& body = b.mesh;
+  if (std::filesystem::path(o.output).extension() == ".glb") {
+    GltfBuilder gltf;
+    const JointNaming naming = o.rig_names;
+    add_gltf_body(gltf, "body", s, body, Actor{}.colors, pose,
+                  [naming](const std::string& hanim) { return joint_name_in(naming, hanim); });
+    gltf.write(o.output);
+    std::fprintf(stderr, "wrote %s: %d joints, %zu vertices, %zu triangles\n", o.output.c_str(),
+                 s.size(), body.vertices.size(), body.triangles.size());
+    return 0;
+  }
   std::vector<float> positions(3 * body.vertices.size() + 1);
   Skinner(s, body).skin(forward_kinematics(s, pose), positions.data());
   export_body_mesh(o.output, body, std::span(positions).first(3 * body.vertices.size()),
@@ -182,14 +196,18 @@ std::string limits_document() {
          joint_limits_markdown(gomez_joint_limits());
 }
 
-int limits(const ModelOptions& o) {
-  const std::string text = limits_document();
+// Markdown to standard output or to --output.
+int print_or_write(const ModelOptions& o, const std::string& text) {
   if (o.output.empty()) {
     std::fwrite(text.data(), 1, text.size(), stdout);
   } else {
     write_text_atomic(o.output, text);
   }
   return 0;
+}
+
+int limits(const ModelOptions& o) {
+  return print_or_write(o, limits_document());
 }
 
 }  // namespace
@@ -203,7 +221,8 @@ void add_model(CLI::App& app, Action& action) {
       "  simcap model info --height 1.80\n"
       "  simcap model urdf -o body.urdf\n"
       "  simcap model mesh -o body.glb --set l_elbow_flexion=-90\n"
-      "  simcap model limits -o joint_limits.md");
+      "  simcap model limits -o joint_limits.md\n"
+      "  simcap model info --body character.glb");
   auto o = std::make_shared<ModelOptions>();
   auto add_height = [o](CLI::App* cmd) {
     cmd->add_option("--height", o->height, "Humanoid height in metres")
@@ -217,7 +236,8 @@ void add_model(CLI::App& app, Action& action) {
   };
   auto add_body = [o](CLI::App* cmd) {
     cmd->add_option("--body", o->body,
-                    "A body file instead of simcap's humanoid: an H-Anim X3D humanoid (.x3d)")
+                    "A body file instead of simcap's humanoid: an H-Anim X3D humanoid (.x3d) or a "
+                    "rigged mesh (.glb, .gltf, .fbx, .dae; bone names by models/joint_names.md)")
         ->check(CLI::ExistingFile)
         ->excludes(cmd->get_option("--height"))
         ->excludes(cmd->get_option("--girth"));
@@ -246,8 +266,9 @@ void add_model(CLI::App& app, Action& action) {
 
   auto* m = model->add_subcommand(
       "mesh",
-      "Write the skinned body mesh (neutral, or posed by a motion and/or --set) as OBJ, "
-      "PLY or binary glTF, one part per material region");
+      "Write the skinned body mesh (neutral, or posed by a motion and/or --set) as OBJ or PLY "
+      "(one part per material region), or as binary glTF with its skeleton and skin (the pose "
+      "in the joints; Blender, three.js and `--body` read it back)");
   m->add_option("-o,--output", o->output, "Mesh file: .obj, .ply or .glb")->required();
   add_height(m);
   add_girth(m);
@@ -257,6 +278,12 @@ void add_model(CLI::App& app, Action& action) {
                 "Pose from this procedural motion (stand, tpose, walk_in_place, walk_path, "
                 "arm_raise, turn)")
       ->excludes(bvh);
+  add_choice(m, "--rig-names", o->rig_names,
+             NameTable<JointNaming, 3>{{{"hanim", JointNaming::hanim},
+                                        {"mixamo", JointNaming::mixamo},
+                                        {"vrm", JointNaming::vrm}}},
+             "glTF only: name the skeleton's nodes by H-Anim, Mixamo (mixamorig:LeftArm) or VRM "
+             "(leftUpperArm) where the table has the joint (models/joint_names.md)");
   m->add_option("--time", o->time_s, "Time in the motion, seconds")
       ->check(non_negative_number())
       ->capture_default_str();
@@ -278,6 +305,15 @@ void add_model(CLI::App& app, Action& action) {
   l->add_option("-o,--output", o->output, "Write to this file instead of standard output");
   l->footer("Example:\n  simcap model limits -o models/joint_limits.md");
   l->callback([&action, o] { action = [o] { return limits(*o); }; });
+
+  auto* n = model->add_subcommand(
+      "joint-names",
+      "Print the tables that map rigged meshes' bone names (Mixamo, VRM) to H-Anim joints, as "
+      "Markdown");
+  n->add_option("-o,--output", o->output, "Write to this file instead of standard output");
+  n->footer("Example:\n  simcap model joint-names -o models/joint_names.md");
+  n->callback(
+      [&action, o] { action = [o] { return print_or_write(*o, joint_names_markdown()); }; });
 }
 
 }  // namespace simcap::cli

@@ -144,6 +144,13 @@ TEST(ModelCli, ShippedLimitTableIsCurrent) {
       << "regenerate with: simcap model limits -o models/joint_limits.md";
 }
 
+TEST(ModelCli, ShippedJointNameTablesAreCurrent) {
+  std::string out;
+  ASSERT_EQ(run_simcap("model joint-names", &out), 0) << out;
+  EXPECT_EQ(out, read_text(std::filesystem::path(SIMCAP_SOURCE_DIR) / "models/joint_names.md"))
+      << "regenerate with: simcap model joint-names -o models/joint_names.md";
+}
+
 TEST(ModelCli, ShippedLimitsUrdfIsWhatModelUrdfWrites) {
   TempDir dir;
   std::string out;

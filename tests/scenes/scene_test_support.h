@@ -105,6 +105,8 @@ inline void expect_scenes_equal(const Scene& a, const Scene& b, double tol = 1e-
     EXPECT_NEAR(x.body.shape.girth, y.body.shape.girth, tol);
     EXPECT_EQ(x.body.format, y.body.format);
     EXPECT_EQ(x.body.file, y.body.file);
+    EXPECT_EQ(x.body.rigged.naming, y.body.rigged.naming);
+    EXPECT_EQ(x.body.rigged.metres_per_unit, y.body.rigged.metres_per_unit);
     EXPECT_EQ(x.limits, y.limits);
     EXPECT_EQ(x.colors, y.colors);
     EXPECT_EQ(x.motion.bvh, y.motion.bvh);
