@@ -48,6 +48,12 @@ GltfBody add_gltf_body(GltfBuilder& builder, const std::string& name, const Skel
   v.normals = vertex_normals(mesh.vertices, mesh.triangles);
   v.joints = mesh.influence_joint;
   v.weights = mesh.influence_weight;
+  // glTF wants the unused slots (weight 0) to name joint 0.
+  for (size_t i = 0; i < v.joints.size(); ++i) {
+    for (int k = 0; k < 4; ++k) {
+      if (v.weights[i][k] == 0) v.joints[i][k] = 0;
+    }
+  }
   std::vector<GltfBuilder::Primitive> primitives;
   for (int r = 0; r < kMaterialRegionCount; ++r) {
     GltfBuilder::Primitive p;
@@ -68,9 +74,11 @@ GltfBody add_gltf_body(GltfBuilder& builder, const std::string& name, const Skel
   return body;
 }
 
-void add_gltf_motion(GltfBuilder& builder, const std::string& name, const GltfBody& body,
-                     const Skeleton& skeleton, const std::vector<Pose>& frames, double fps) {
-  if (frames.empty()) throw Error("glTF animation '" + name + "': no frames");
+std::vector<GltfBuilder::Channel> gltf_motion_channels(const GltfBody& body,
+                                                       const Skeleton& skeleton,
+                                                       const std::vector<Pose>& frames,
+                                                       double fps) {
+  if (frames.empty()) throw Error("glTF animation: no frames");
   std::vector<float> times;
   for (size_t f = 0; f < frames.size(); ++f) times.push_back(static_cast<float>(f / fps));
   std::vector<GltfBuilder::Channel> channels;
@@ -92,7 +100,7 @@ void add_gltf_motion(GltfBuilder& builder, const std::string& name, const GltfBo
     }
     channels.push_back(std::move(c));
   }
-  builder.add_animation(name, channels);
+  return channels;
 }
 
 }  // namespace simcap

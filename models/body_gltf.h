@@ -34,10 +34,12 @@ GltfBody add_gltf_body(GltfBuilder& builder, const std::string& name, const Skel
                        const std::array<Eigen::Vector3f, kMaterialRegionCount>& colors,
                        const Pose& pose, const JointNamer& namer = {});
 
-// Adds an animation of `body` through `frames` (poses of `skeleton`) at `fps`: the root's
-// translation and every joint's rotation, one key per frame, linear interpolation.
-void add_gltf_motion(GltfBuilder& builder, const std::string& name, const GltfBody& body,
-                     const Skeleton& skeleton, const std::vector<Pose>& frames, double fps);
+// The animation channels that move `body` through `frames` (poses of `skeleton`) at `fps`: the
+// root's translation and every joint's rotation, one key per frame (linear interpolation).
+// Several bodies' channels make one animation (GltfBuilder::add_animation).
+std::vector<GltfBuilder::Channel> gltf_motion_channels(const GltfBody& body,
+                                                       const Skeleton& skeleton,
+                                                       const std::vector<Pose>& frames, double fps);
 
 // Area-weighted vertex normals of a triangle mesh (unit length; zero for unused vertices).
 std::vector<Eigen::Vector3f> vertex_normals(
