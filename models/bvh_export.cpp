@@ -17,7 +17,8 @@ void append(std::string& out, const char* format, double a, double b, double c) 
   out += buf;
 }
 
-// Angles (a, b, c) in degrees with R = Rz(a) Ry(b) Rx(c), b in [-90, 90].
+}  // namespace
+
 Eigen::Vector3d zyx_degrees(const Eigen::Quaterniond& q) {
   const Eigen::Matrix3d R = q.normalized().toRotationMatrix();
   const double b = std::asin(std::clamp(-R(2, 0), -1.0, 1.0));
@@ -31,6 +32,8 @@ Eigen::Vector3d zyx_degrees(const Eigen::Quaterniond& q) {
   }
   return Eigen::Vector3d(a, b, c) * (180.0 / std::numbers::pi);
 }
+
+namespace {
 
 class Writer {
  public:

@@ -2,6 +2,7 @@
 // tools (Blender, MotionBuilder) and read back by read_bvh.
 #pragma once
 
+#include <Eigen/Geometry>
 #include <filesystem>
 #include <string>
 
@@ -13,6 +14,10 @@ namespace simcap {
 struct BvhWriteOptions {
   double metres_per_unit = 1.0;  // file unit (1: metres, as Blender expects; 0.01: centimetres)
 };
+
+// Angles (a, b, c) in degrees with R = Rz(a) Ry(b) Rx(c), b in [-90, 90]: the values of the
+// channels "Zrotation Yrotation Xrotation" (BVH, X3D HAnimMotion).
+Eigen::Vector3d zyx_degrees(const Eigen::Quaterniond& q);
 
 // Joints keep their names; sites become End Sites; a joint with no child gets a zero End Site
 // (BVH requires one). The root has a zero OFFSET and its world position in the position

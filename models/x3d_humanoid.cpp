@@ -6,6 +6,8 @@
 #include <cstring>
 #include <map>
 #include <pugixml.hpp>
+#include <set>
+#include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -36,12 +38,7 @@ class Reader {
   Reader(std::string_view text, const std::filesystem::path& file) : text_(text), file_(file) {}
 
   SkinnedSkeleton read(std::vector<std::string>& notes) {
-    const pugi::xml_parse_result parsed =
-        doc_.load_buffer(text_.data(), text_.size(), pugi::parse_default, pugi::encoding_utf8);
-    if (!parsed) {
-      fail(line_at(parsed.offset), std::string("not well-formed XML: ") + parsed.description());
-    }
-    index_defs(doc_.document_element());
+    load();
     std::vector<pugi::xml_node> humanoids;
     for (const pugi::xpath_node& x : doc_.select_nodes("//HAnimHumanoid[not(@USE)]")) {
       humanoids.push_back(x.node());
@@ -63,7 +60,102 @@ class Reader {
     return out;
   }
 
+  Motion read_motion(const Skeleton& skeleton) {
+    load();
+    const pugi::xpath_node found = doc_.select_node("//HAnimMotion[not(@USE)]");
+    if (!found) fail(1, "expected an HAnimMotion, found none");
+    const pugi::xml_node m = found.node();
+    std::vector<int> joints;
+    {
+      std::istringstream in(m.attribute("joints").value());
+      for (std::string name; in >> name;) {
+        if (name == "HumanoidRoot") name = "humanoid_root";
+        const int j = name == "IGNORED" ? -1 : skeleton.find(name);
+        if (j < 0 && name != "IGNORED") {
+          fail(line(m), "HAnimMotion joints: '" + name + "' is not a joint of the humanoid");
+        }
+        joints.push_back(j);
+      }
+    }
+    std::vector<std::vector<std::string>> channels;
+    {
+      std::istringstream in(m.attribute("channels").value());
+      for (std::string word; in >> word;) {
+        int count = 0;
+        const auto [ptr, ec] = std::from_chars(word.data(), word.data() + word.size(), count);
+        if (ec != std::errc() || ptr != word.data() + word.size() || count < 0 || count > 9) {
+          fail(line(m), "HAnimMotion channels: expected a channel count, got '" + word + "'");
+        }
+        auto& list = channels.emplace_back();
+        for (int k = 0; k < count && in >> word; ++k) {
+          static const std::set<std::string> known = {"Xposition", "Yposition", "Zposition",
+                                                      "Xrotation", "Yrotation", "Zrotation"};
+          if (!known.count(word)) {
+            fail(line(m),
+                 "HAnimMotion channels: expected Xposition, Yposition, Zposition, "
+                 "Xrotation, Yrotation or Zrotation, got '" +
+                     word + "'");
+          }
+          list.push_back(word);
+        }
+        if (static_cast<int>(list.size()) != count) {
+          fail(line(m), "HAnimMotion channels: expected " + std::to_string(count) +
+                            " channel names, got " + std::to_string(list.size()));
+        }
+      }
+    }
+    if (channels.size() != joints.size()) {
+      fail(line(m), "HAnimMotion: expected channels for the " + std::to_string(joints.size()) +
+                        " joints, got " + std::to_string(channels.size()));
+    }
+    size_t per_frame = 0;
+    for (const auto& c : channels) per_frame += c.size();
+    const std::vector<double> values = numbers(m, "values");
+    if (per_frame == 0 || values.empty() || values.size() % per_frame != 0) {
+      fail(line(m), "HAnimMotion values: expected a whole number of frames of " +
+                        std::to_string(per_frame) + " values, got " +
+                        std::to_string(values.size()));
+    }
+    const std::vector<double> duration = numbers(m, "frameDuration");
+    const double frame_time = duration.empty() ? 0.1 : duration[0];  // X3D's default
+    if (!(frame_time > 0)) fail(line(m), "HAnimMotion frameDuration: expected seconds > 0");
+    Motion motion;
+    motion.fps = 1.0 / frame_time;
+    constexpr double kDeg = 3.14159265358979323846 / 180.0;
+    for (size_t v = 0; v < values.size();) {
+      Pose pose = Pose::neutral(skeleton);
+      for (size_t k = 0; k < joints.size(); ++k) {
+        Eigen::Vector3d t = Eigen::Vector3d::Zero();
+        Eigen::Quaterniond r = Eigen::Quaterniond::Identity();
+        for (const std::string& c : channels[k]) {
+          const double x = values[v++];
+          const int axis = c[0] - 'X';
+          if (c.ends_with("position")) {
+            t[axis] = x;
+          } else {
+            r = r * Eigen::AngleAxisd(x * kDeg, Eigen::Vector3d::Unit(axis));
+          }
+        }
+        const int j = joints[k];
+        if (j < 0) continue;
+        pose.rotations[j] = r;
+        if (j == 0) pose.root_position = skeleton[0].center + t;
+      }
+      motion.frames.push_back(std::move(pose));
+    }
+    return motion;
+  }
+
  private:
+  void load() {
+    const pugi::xml_parse_result parsed =
+        doc_.load_buffer(text_.data(), text_.size(), pugi::parse_default, pugi::encoding_utf8);
+    if (!parsed) {
+      fail(line_at(parsed.offset), std::string("not well-formed XML: ") + parsed.description());
+    }
+    index_defs(doc_.document_element());
+  }
+
   int line_at(std::ptrdiff_t offset) const {
     const size_t end = std::min<size_t>(std::max<std::ptrdiff_t>(offset, 0), text_.size());
     return 1 + static_cast<int>(std::count(text_.begin(), text_.begin() + end, '\n'));
@@ -368,6 +460,15 @@ Body parse_x3d_humanoid(std::string_view text, const std::filesystem::path& file
 
 Body read_x3d_humanoid(const std::filesystem::path& path) {
   return parse_x3d_humanoid(read_text(path), path);
+}
+
+Motion parse_x3d_motion(std::string_view text, const std::filesystem::path& file,
+                        const Skeleton& skeleton) {
+  return Reader(text, file).read_motion(skeleton);
+}
+
+Motion read_x3d_motion(const std::filesystem::path& path, const Skeleton& skeleton) {
+  return parse_x3d_motion(read_text(path), path, skeleton);
 }
 
 }  // namespace simcap

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "models/imported_body.h"
+#include "models/motion.h"
 
 namespace simcap {
 
@@ -23,5 +24,17 @@ namespace simcap {
 Body read_x3d_humanoid(const std::filesystem::path& path);
 // The same from text in memory; `file` is used in messages only.
 Body parse_x3d_humanoid(std::string_view text, const std::filesystem::path& file);
+
+// The first HAnimMotion of an X3D file (X3D 4.0) as a motion of `skeleton`: `joints` names
+// skeleton joints (or IGNORED), `channels` gives per joint a count and that many of
+// Xposition, Yposition, Zposition (the joint's translation: for humanoid_root, its
+// displacement from its centre) and Xrotation, Yrotation, Zrotation (degrees, composed in the
+// order listed, as BVH does), `values` holds them frame after frame, frameDuration is 1 / fps.
+// Throws Error "file:line: ..." for a missing HAnimMotion, a joint the skeleton lacks, a
+// channel count that does not match the joints, values that are not a whole number of frames,
+// or a frame duration that is not positive.
+Motion read_x3d_motion(const std::filesystem::path& path, const Skeleton& skeleton);
+Motion parse_x3d_motion(std::string_view text, const std::filesystem::path& file,
+                        const Skeleton& skeleton);
 
 }  // namespace simcap

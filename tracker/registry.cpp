@@ -1,5 +1,7 @@
 #include "tracker/registry.h"
 
+#include "tracker/track_export.h"
+
 #include <array>
 
 #include "core/error.h"
@@ -107,6 +109,7 @@ TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
   }
   TrackFolder folder(out);
   TrackSummary summary = family.run(dataset, folder.path(), options);
+  export_track_motion(folder.path(), Dataset(dataset).fps(), options.exports);
   folder.commit();
   summary.track = out;
   return summary;

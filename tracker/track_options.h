@@ -5,6 +5,7 @@
 #include "core/name_table.h"
 #include "tracker/common/init_method.h"
 #include "tracker/moschini/moschini_job.h"
+#include "tracker/track_export.h"
 #include "tracker/unzueta/sik_track_job.h"
 
 namespace simcap::tracker {
@@ -18,6 +19,8 @@ struct TrackOptions {
   // Options every family shares; the registry hands them to the family that runs.
   InitMethod init = InitMethod::gt;
   bool quiet = false;
+  // Formats the track's motion is also written in (TRACK/motion.bvh, motion.x3d).
+  std::vector<MotionExport> exports;
   MoschiniOptions moschini;
   SikTrackOptions sik;
 };

@@ -77,6 +77,23 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
                   "sik: standard deviation of the noise added to the end-effectors, metres")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  std::vector<std::string> export_names;
+  for (const auto& [name, value] : kMotionExports) export_names.emplace_back(name);
+  cmd->add_option_function<std::vector<std::string>>(
+         "--export",
+         [&o](const std::vector<std::string>& words) {
+           o.exports.clear();
+           for (const std::string& w : words) {
+             for (const auto& [name, value] : kMotionExports) {
+               if (w == name) o.exports.push_back(value);
+             }
+           }
+         },
+         "Also write the tracked motion as TRACK/motion.bvh and/or motion.x3d (X3D H-Anim "
+         "HAnimMotion), comma-separated: " +
+             choices_text(kMotionExports) + "; simcap's humanoid sized to the track")
+      ->delimiter(',')
+      ->check(CLI::IsMember(export_names));
   if (scope == TrackOptionScope::loop) return;
   cmd->add_option("--inspect", o.moschini.inspect,
                   "moschini: frames to lay open, comma-separated: per camera an image with the "

@@ -152,6 +152,17 @@ std::optional<Eigen::AlignedBox3d> Dataset::room() const {
   }
 }
 
+double Dataset::fps() const {
+  const fs::path path = root_ / "scene.yaml";
+  if (!fs::is_regular_file(path)) return 30.0;
+  try {
+    const YAML::Node fps = YAML::LoadFile(path.string())["render"]["fps"];
+    return fps ? fps.as<double>() : 30.0;
+  } catch (const YAML::Exception& e) {
+    throw_input_error(path, e.mark.line + 1, "render.fps", e.msg);
+  }
+}
+
 std::optional<std::string> Dataset::actor_limits() const {
   const fs::path path = root_ / "scene.yaml";
   if (!fs::is_regular_file(path)) return std::nullopt;

@@ -48,6 +48,8 @@ class Dataset {
   // The joint-limits file scene.yaml names for its first actor (actors[0].limits), as written
   // there ("asset:<name>" or a path), when it names one.
   std::optional<std::string> actor_limits() const;
+  // Frames per second from scene.yaml (render.fps), 30 when the file does not say.
+  double fps() const;
 
  private:
   cv::Mat read(const std::filesystem::path& path, int camera, int flags) const;
