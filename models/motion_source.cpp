@@ -1,15 +1,29 @@
 #include "models/motion_source.h"
 
+#include "core/error.h"
+#include "models/asf_amc.h"
 #include "models/bvh.h"
 #include "models/resample.h"
 #include "models/retarget.h"
 
 namespace simcap {
 
+BvhClip read_motion_clip(const MotionSource& source) {
+  if (!source.bvh.empty()) {
+    return read_bvh(source.bvh, {.metres_per_unit = source.bvh_metres_per_unit});
+  }
+  if (!source.amc.empty()) {
+    return read_asf_amc(source.asf, source.amc,
+                        {.fps = source.amc_fps, .metres_per_unit = source.bvh_metres_per_unit});
+  }
+  throw Error("a procedural motion has no clip");
+}
+
 Motion load_motion(const MotionSource& source, const Skeleton& skeleton, double fps) {
-  if (source.bvh.empty()) return generate_procedural(source.procedural, skeleton, fps);
-  const BvhClip clip = read_bvh(source.bvh, {.metres_per_unit = source.bvh_metres_per_unit});
-  return resample_motion(retarget_bvh(clip, skeleton).motion, fps);
+  if (source.bvh.empty() && source.amc.empty()) {
+    return generate_procedural(source.procedural, skeleton, fps);
+  }
+  return resample_motion(retarget_bvh(read_motion_clip(source), skeleton).motion, fps);
 }
 
 }  // namespace simcap

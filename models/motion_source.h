@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "models/bvh.h"
 #include "models/motion.h"
 #include "models/skeleton.h"
 
@@ -25,12 +26,21 @@ struct ProceduralSpec {
 };
 
 struct MotionSource {
-  std::filesystem::path bvh;         // when not empty: a BVH file; otherwise `procedural`
-  double bvh_metres_per_unit = 0.0;  // 0: detect from the skeleton's size (CMU: 0.0254 / 0.45)
-  ProceduralSpec procedural;
+  std::filesystem::path bvh;  // when not empty: a BVH file
+  // When not empty (and bvh is): an Acclaim AMC motion of the ASF skeleton `asf` (CMU's own
+  // format, models/asf_amc.h) at `amc_fps`.
+  std::filesystem::path amc, asf;
+  double amc_fps = 120.0;
+  // BVH: 0 detects the unit from the skeleton's size (CMU: 0.0254 / 0.45); AMC: 0 takes the
+  // ASF's :units length.
+  double bvh_metres_per_unit = 0.0;
+  ProceduralSpec procedural;  // when neither file is given
 };
 
-// The motion of `source` for `skeleton`, sampled at `fps` (BVH clips are retargeted and
+// The clip of a BVH or ASF/AMC source (retargeting's input); Error for a procedural one.
+BvhClip read_motion_clip(const MotionSource& source);
+
+// The motion of `source` for `skeleton`, sampled at `fps` (BVH and AMC clips are retargeted and
 // resampled with slerp). Throws Error naming the file and line for bad motion files.
 Motion load_motion(const MotionSource& source, const Skeleton& skeleton, double fps);
 

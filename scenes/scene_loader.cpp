@@ -333,12 +333,27 @@ MotionSource SceneReader::read_motion(const Field& f) const {
   Map m(f);
   MotionSource src;
   const bool bvh = m.has("bvh");
+  const bool amc = m.has("amc");
   const bool procedural = m.has("procedural");
-  if (bvh == procedural) {
-    f.fail("a motion needs exactly one of 'bvh' (a motion-capture file) or 'procedural' (one of " +
-           scene_names::one_of(procedural_kinds()) + ")");
+  if (bvh + amc + procedural != 1) {
+    f.fail(
+        "a motion needs exactly one of 'bvh' (a motion-capture file), 'amc' (with 'asf', "
+        "CMU's Acclaim files) or 'procedural' (one of " +
+        scene_names::one_of(procedural_kinds()) + ")");
   }
-  if (bvh) {
+  if (amc) {
+    src.amc = read_file(*m.take("amc"));
+    src.asf = read_file(m.require("asf"));
+    if (auto v = m.take("fps")) src.amc_fps = v->number(yaml::positive(10000));
+    if (auto v = m.take("units")) {
+      if (v->is_scalar() && v->node().Scalar() == "auto") {
+        src.bvh_metres_per_unit = 0.0;
+      } else {
+        if (!v->is_scalar()) v->expected("'auto' or metres per file unit (a number > 0)");
+        src.bvh_metres_per_unit = v->number(yaml::positive(1000));
+      }
+    }
+  } else if (bvh) {
     src.bvh = read_file(*m.take("bvh"));
     if (auto v = m.take("units")) {
       if (v->is_scalar() && v->node().Scalar() == "auto") {

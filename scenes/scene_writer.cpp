@@ -105,7 +105,16 @@ void write_camera(YAML::Emitter& out, const Camera& cam) {
 
 void write_motion(YAML::Emitter& out, const MotionSource& m) {
   out << YAML::Key << "motion" << YAML::Value << YAML::BeginMap;
-  if (!m.bvh.empty()) {
+  if (!m.amc.empty()) {
+    file(out, "amc", m.amc);
+    file(out, "asf", m.asf);
+    number(out, "fps", m.amc_fps);
+    if (m.bvh_metres_per_unit > 0) {
+      number(out, "units", m.bvh_metres_per_unit);
+    } else {
+      out << YAML::Key << "units" << YAML::Value << "auto";
+    }
+  } else if (!m.bvh.empty()) {
     file(out, "bvh", m.bvh);
     if (m.bvh_metres_per_unit > 0) {
       number(out, "units", m.bvh_metres_per_unit);

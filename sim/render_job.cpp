@@ -78,7 +78,12 @@ Scene load_for_render(const fs::path& scene_file, const RenderOptions& options) 
     }
     if (scene.actors.empty()) throw Error("--motion: the scene has no actor to move");
     MotionSource source;
-    source.bvh = fs::absolute(options.motion_override);
+    if (options.motion_asf.empty()) {
+      source.bvh = fs::absolute(options.motion_override);
+    } else {
+      source.amc = fs::absolute(options.motion_override);
+      source.asf = fs::absolute(options.motion_asf);
+    }
     scene.actors[0].motion = source;
   }
   if (options.frames == 0 || options.frames < -1) {

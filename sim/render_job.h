@@ -12,9 +12,11 @@
 namespace simcap {
 
 struct RenderOptions {
-  int frames = -1;                        // > 0: render this many frames instead of the scene's
-  std::filesystem::path motion_override;  // a BVH file replacing the first actor's motion
-  std::optional<std::uint64_t> seed;      // replaces the scene's render seed
+  int frames = -1;  // > 0: render this many frames instead of the scene's
+  // A BVH file replacing the first actor's motion, or an AMC file with `motion_asf` its ASF.
+  std::filesystem::path motion_override;
+  std::filesystem::path motion_asf;
+  std::optional<std::uint64_t> seed;  // replaces the scene's render seed
   // Names of the rig's cameras to render (kept in rig order, with their names; the dataset then
   // holds only these); empty: all. A camera's images do not depend on which others are rendered.
   std::vector<std::string> cameras;

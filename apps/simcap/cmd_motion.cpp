@@ -19,6 +19,8 @@ namespace {
 
 struct MotionOptions {
   std::string input, output, joints_csv;
+  std::string asf;  // the input is an AMC motion of this ASF skeleton
+  double amc_fps = 120.0;
   double metres_per_unit = 0.0;
   double height = 1.75;
   double fps = 0.0;
@@ -35,8 +37,17 @@ void write_positions(const std::string& path, const Skeleton& skeleton, const Mo
   write_joint_track(path, track);
 }
 
+BvhClip clip_of(const MotionOptions& o) {
+  MotionSource source;
+  (o.asf.empty() ? source.bvh : source.amc) = o.input;
+  source.asf = o.asf;
+  source.amc_fps = o.amc_fps;
+  source.bvh_metres_per_unit = o.metres_per_unit;
+  return read_motion_clip(source);
+}
+
 int dump(const MotionOptions& o) {
-  const BvhClip clip = read_bvh(o.input, {.metres_per_unit = o.metres_per_unit});
+  const BvhClip clip = clip_of(o);
   JointTrack track;
   for (const auto& j : clip.joints) track.joints.push_back(j.name);
   for (int f = 0; f < clip.frame_count(); ++f) track.add_frame(f, bvh_joint_positions(clip, f));
@@ -49,7 +60,7 @@ int dump(const MotionOptions& o) {
 }
 
 int retarget(const MotionOptions& o) {
-  const BvhClip clip = read_bvh(o.input, {.metres_per_unit = o.metres_per_unit});
+  const BvhClip clip = clip_of(o);
   const Skeleton skeleton = build_humanoid({.height = o.height, .proportions = {}});
   const Retargeted result = retarget_bvh(clip, skeleton, {.place_on_floor = !o.no_floor});
   const RetargetReport& r = result.report;
@@ -94,26 +105,36 @@ void add_motion(CLI::App& app, Action& action) {
   auto o = std::make_shared<MotionOptions>();
   auto add_unit = [o](CLI::App* cmd) {
     cmd->add_option("--metres-per-unit", o->metres_per_unit,
-                    "Metres per BVH unit; 0 detects it from the skeleton's size (CMU: 0.0564444)")
+                    "Metres per file unit; 0: BVH detects it from the skeleton's size, AMC takes "
+                    "the ASF's :units length (CMU: 0.0564444)")
         ->check(non_negative_number())
+        ->capture_default_str();
+    cmd->add_option("--asf", o->asf,
+                    "The file is an Acclaim AMC motion of this ASF skeleton (CMU's own format)")
+        ->check(CLI::ExistingFile);
+    cmd->add_option("--amc-fps", o->amc_fps, "Frame rate of the AMC file (CMU: 120)")
+        ->check(positive_number())
         ->capture_default_str();
   };
 
   auto* d = motion->add_subcommand(
       "dump",
-      "Write the BVH skeleton's joint world positions for every frame: frame,joint,x,y,z in "
-      "metres, the file's own joint names, end sites as <Parent>_End; no retargeting");
-  d->add_option("file", o->input, "BVH file")->required();
+      "Write the clip's joint world positions for every frame: frame,joint,x,y,z in metres, the "
+      "file's own joint names (an AMC's: each bone at its proximal end, root for the root), end "
+      "sites as <Parent>_End; no retargeting");
+  d->add_option("file", o->input, "BVH file, or AMC file with --asf")->required();
   d->add_option("-o,--output", o->output, "CSV file to write")->required();
   add_unit(d);
-  d->footer("Example:\n  simcap motion dump cmu_131_01_start_walk_stop.bvh -o joints.csv");
+  d->footer(
+      "Examples:\n  simcap motion dump cmu_131_01_start_walk_stop.bvh -o joints.csv\n"
+      "  simcap motion dump 131_01.amc --asf 131.asf -o joints.csv");
   d->callback([&action, o] { action = [o] { return dump(*o); }; });
 
   auto* r = motion->add_subcommand(
       "retarget",
       "Retarget a BVH clip onto the simcap humanoid; print the joint mapping and the foot "
       "figures (lowest foot point height, sliding in contact); optionally write the result");
-  r->add_option("file", o->input, "BVH file")->required();
+  r->add_option("file", o->input, "BVH file, or AMC file with --asf")->required();
   r->add_option("-o,--output", o->output, "BVH file of the retargeted motion (H-Anim names)");
   r->add_option("--joints-csv", o->joints_csv,
                 "Also write its joint positions (frame,joint,x,y,z)");

@@ -10,9 +10,14 @@ void SeedOption::apply(RenderOptions& options) const {
 void add_render_options(CLI::App* cmd, RenderOptions& options, SeedOption& seed) {
   cmd->add_option("--frames", options.frames, "Frames to render (unset: the whole motion)")
       ->check(positive_number());
-  cmd->add_option("--motion", options.motion_override,
-                  "BVH file that replaces the first actor's motion")
-      ->check(CLI::ExistingFile);
+  auto* motion = cmd->add_option("--motion", options.motion_override,
+                                 "BVH file (or AMC file with --asf) that replaces the first "
+                                 "actor's motion")
+                     ->check(CLI::ExistingFile);
+  cmd->add_option("--asf", options.motion_asf,
+                  "ASF skeleton of the --motion AMC file (Acclaim, as the CMU database ships)")
+      ->check(CLI::ExistingFile)
+      ->needs(motion);
   seed.option = cmd->add_option(
       "--seed", seed.value,
       "Seed of anti-aliasing jitter and sensor noise (default: the scene's render.seed)");

@@ -90,7 +90,7 @@ TEST(BvhNames, PicksTheTableThatKnowsMostNames) {
   EXPECT_EQ(hanim.hanim[2], "skull_tip");
   EXPECT_EQ(hanim.hanim[3], "");  // not mapped, and not by its position in the list
   EXPECT_FALSE(hanim.intermediate[3]);
-  EXPECT_EQ(bvh_naming_conventions().size(), 6u);
+  EXPECT_EQ(bvh_naming_conventions().size(), 7u);
 }
 
 }  // namespace

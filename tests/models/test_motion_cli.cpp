@@ -140,7 +140,7 @@ TEST(MotionCli, GenerateWritesTheRequestedMotion) {
             0);
   EXPECT_FALSE(std::filesystem::exists(dir / "m.bvh"));
   ASSERT_EQ(testing::run_simcap("motion dump --help", &out), 0);
-  EXPECT_NE(out.find("Example:"), std::string::npos) << out;
+  EXPECT_NE(out.find("Examples:"), std::string::npos) << out;
 }
 
 TEST(LoadMotion, RetargetsAndResamplesBvhOrGeneratesAtTheRate) {

@@ -110,6 +110,9 @@ inline void expect_scenes_equal(const Scene& a, const Scene& b, double tol = 1e-
     EXPECT_EQ(x.limits, y.limits);
     EXPECT_EQ(x.colors, y.colors);
     EXPECT_EQ(x.motion.bvh, y.motion.bvh);
+    EXPECT_EQ(x.motion.amc, y.motion.amc);
+    EXPECT_EQ(x.motion.asf, y.motion.asf);
+    EXPECT_EQ(x.motion.amc_fps, y.motion.amc_fps);
     EXPECT_NEAR(x.motion.bvh_metres_per_unit, y.motion.bvh_metres_per_unit, tol);
     EXPECT_EQ(x.motion.procedural.kind, y.motion.procedural.kind);
     EXPECT_NEAR(x.motion.procedural.duration_s, y.motion.procedural.duration_s, tol);
