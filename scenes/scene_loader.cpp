@@ -22,13 +22,19 @@
 namespace simcap {
 
 namespace {
-
 using yaml::Field;
 using yaml::Map;
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
 constexpr int kIntMax = std::numeric_limits<int>::max();
 constexpr int kMaxImageSide = 16384;
+
+// 'auto' (0) or metres per file unit.
+double read_units(const Field& v) {
+  if (v.is_scalar() && v.node().Scalar() == "auto") return 0.0;
+  if (!v.is_scalar()) v.expected("'auto' or metres per file unit (a number > 0)");
+  return v.number(yaml::positive(1000));
+}
 
 template <std::size_t N>
 int read_word(const Field& f, const std::array<std::string_view, N>& words) {
@@ -346,22 +352,12 @@ MotionSource SceneReader::read_motion(const Field& f) const {
     src.asf = read_file(m.require("asf"));
     if (auto v = m.take("fps")) src.amc_fps = v->number(yaml::positive(10000));
     if (auto v = m.take("units")) {
-      if (v->is_scalar() && v->node().Scalar() == "auto") {
-        src.bvh_metres_per_unit = 0.0;
-      } else {
-        if (!v->is_scalar()) v->expected("'auto' or metres per file unit (a number > 0)");
-        src.bvh_metres_per_unit = v->number(yaml::positive(1000));
-      }
+      src.bvh_metres_per_unit = read_units(*v);
     }
   } else if (bvh) {
     src.bvh = read_file(*m.take("bvh"));
     if (auto v = m.take("units")) {
-      if (v->is_scalar() && v->node().Scalar() == "auto") {
-        src.bvh_metres_per_unit = 0.0;
-      } else {
-        if (!v->is_scalar()) v->expected("'auto' or metres per file unit (a number > 0)");
-        src.bvh_metres_per_unit = v->number(yaml::positive(1000));
-      }
+      src.bvh_metres_per_unit = read_units(*v);
     }
   } else {
     const Field kind = *m.take("procedural");
@@ -401,12 +397,7 @@ void SceneReader::read_body_file(const Field& f, BodySource& body) const {
       body.rigged.naming = it->second;
     }
     if (auto v = m.take("units")) {
-      if (v->is_scalar() && v->node().Scalar() == "auto") {
-        body.rigged.metres_per_unit = 0.0;
-      } else {
-        if (!v->is_scalar()) v->expected("'auto' or metres per file unit (a number > 0)");
-        body.rigged.metres_per_unit = v->number(yaml::positive(1000));
-      }
+      body.rigged.metres_per_unit = read_units(*v);
     }
   }
   m.finish();
