@@ -8,7 +8,6 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <random>
-#include <regex>
 #include <sstream>
 
 #include "core/atomic_file.h"
@@ -94,14 +93,22 @@ TEST(TomlCalibration, PythonTomllibReadsEveryCamera) {
   }
   // Strict readers (Python's `toml`, used by Anipose and Pose2Sim) want arrays of one type:
   // every number in a float array carries a point or an exponent.
-  const std::string text = read_text(path);
-  const std::regex float_array(R"re((matrix|distortions|rotation|translation) = (.*))re");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), float_array);
-       it != std::sregex_iterator(); ++it) {
-    const std::string values = std::regex_replace((*it)[2].str(), std::regex(R"([\[\],])"), " ");
+  std::istringstream lines(read_text(path));
+  int arrays = 0;
+  for (std::string line; std::getline(lines, line);) {
+    const std::string key = line.substr(0, line.find(" = "));
+    if (key != "matrix" && key != "distortions" && key != "rotation" && key != "translation") {
+      continue;
+    }
+    ++arrays;
+    std::string values = line.substr(line.find('=') + 1);
+    for (char& c : values) {
+      if (c == '[' || c == ']' || c == ',') c = ' ';
+    }
     std::istringstream in(values);
-    for (std::string v; in >> v;) EXPECT_NE(v.find_first_of(".e"), v.npos) << (*it)[0];
+    for (std::string v; in >> v;) EXPECT_NE(v.find_first_of(".e"), v.npos) << line;
   }
+  EXPECT_EQ(arrays, 4 * static_cast<int>(cams.size()));
 }
 
 // COLMAP's text model and camera models, written from its documentation

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <regex>
+#include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -50,16 +50,21 @@ std::string parse_error(const std::string& text) {
 TEST(X3dHumanoid, ReadsJoesJointsAsTheFileStatesThem) {
   const Body joe = read_x3d_humanoid(kJoe);
   const Skeleton& s = joe.skeleton;
-  // Every DEF'd HAnimJoint of the file, by an independent count of its text.
-  const std::regex def_joint(
-      R"re(<HAnimJoint DEF="[^"]*"[^>]*name="([^"]*)"[^>]*center="([^"]*)")re");
+  // Every DEF'd HAnimJoint of the file, by an independent scan of its text.
+  const std::string& text = joe_text();
+  auto attribute = [](const std::string& tag, const std::string& name) {
+    const size_t at = tag.find(" " + name + "=\"");
+    if (at == std::string::npos) return std::string();
+    const size_t start = at + name.size() + 3;
+    return tag.substr(start, tag.find('"', start) - start);
+  };
   int joints = 0;
-  for (auto it = std::sregex_iterator(joe_text().begin(), joe_text().end(), def_joint);
-       it != std::sregex_iterator(); ++it) {
+  for (size_t at = 0; (at = text.find("<HAnimJoint DEF=", at)) != std::string::npos; ++at) {
+    const std::string tag = text.substr(at, text.find('>', at) - at);
     ++joints;
-    const int j = s.find((*it)[1].str());
-    ASSERT_GE(j, 0) << (*it)[1];
-    std::istringstream centre((*it)[2].str());
+    const int j = s.find(attribute(tag, "name"));
+    ASSERT_GE(j, 0) << attribute(tag, "name");
+    std::istringstream centre(attribute(tag, "center"));
     Eigen::Vector3d c;
     centre >> c.x() >> c.y() >> c.z();
     EXPECT_EQ(s[j].center, c) << s[j].name;
