@@ -1,6 +1,8 @@
 #include "models/joint_limits.h"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -189,6 +191,60 @@ std::vector<double> dof_angles(const JointLimits& joint, const Eigen::Quaternion
     out.push_back(axis == 'Z' ? a : axis == 'X' ? b : c);
   }
   return out;
+}
+
+double limit_excess(const JointLimits& joint, const Eigen::Quaterniond& rotation) {
+  const Eigen::Quaterniond q = rotation.normalized();
+  const Eigen::Matrix3d r = q.toRotationMatrix();
+  const double a = std::atan2(-r(0, 1), r(1, 1));
+  const double b = std::asin(std::clamp(r(2, 1), -1.0, 1.0));
+  const double c = std::atan2(-r(2, 0), r(2, 2));
+  // R_z(a) R_x(b) R_y(c) = R_z(a + pi) R_x(pi - b) R_y(c + pi): both decompositions start a
+  // search, each angle turned by whole turns to lie nearest its range.
+  const std::array<std::array<double, 3>, 2> branches = {{{a, b, c}, {a + kPi, kPi - b, c + kPi}}};
+  const size_t n = joint.dofs.size();
+  const auto error = [&](const std::vector<double>& x) {
+    const Eigen::AngleAxisd e(q.conjugate() * dof_rotation(joint, x));
+    return Eigen::Vector3d(e.angle() * e.axis());
+  };
+  double best = INFINITY;
+  for (const auto& euler : branches) {
+    std::vector<double> x(n);
+    for (size_t i = 0; i < n; ++i) {
+      const DofLimit& d = joint.dofs[i];
+      const char axis = axis_letter(d.axis);
+      double v = euler[axis == 'Z' ? 0 : axis == 'X' ? 1 : 2];
+      v += 2 * kPi * std::round((0.5 * (d.lower + d.upper) - v) / (2 * kPi));
+      x[i] = std::clamp(v, d.lower, d.upper);
+    }
+    // Gauss-Newton on the rotation error over the angles not held at a limit they press
+    // against: near gimbal lock (hip flexed 90 degrees) the Euler angles of a reachable rotation
+    // may lie far outside the box while a rotation within it is a fraction of a degree away.
+    for (int iteration = 0; iteration < 40 && n > 0; ++iteration) {
+      const Eigen::Vector3d e = error(x);
+      Eigen::MatrixXd jacobian(3, n);
+      for (size_t i = 0; i < n; ++i) {
+        std::vector<double> xi = x;
+        xi[i] += 1e-7;
+        jacobian.col(i) = (error(xi) - e) / 1e-7;
+      }
+      const Eigen::VectorXd gradient = jacobian.transpose() * e;
+      for (size_t i = 0; i < n; ++i) {
+        const DofLimit& d = joint.dofs[i];
+        if ((x[i] <= d.lower && gradient[i] > 0) || (x[i] >= d.upper && gradient[i] < 0)) {
+          jacobian.col(i).setZero();
+        }
+      }
+      const Eigen::MatrixXd normal =
+          jacobian.transpose() * jacobian + 1e-9 * Eigen::MatrixXd::Identity(n, n);
+      const Eigen::VectorXd step = normal.ldlt().solve(-jacobian.transpose() * e);
+      for (size_t i = 0; i < n; ++i) {
+        x[i] = std::clamp(x[i] + step[i], joint.dofs[i].lower, joint.dofs[i].upper);
+      }
+    }
+    best = std::min(best, error(x).norm());
+  }
+  return best;
 }
 
 std::string joint_limits_markdown(const std::vector<JointLimits>& table) {

@@ -70,6 +70,11 @@ Eigen::Quaterniond dof_rotation(const JointLimits& joint, std::span<const double
 // by the joint's DOFs with the X angle in [-pi/2, pi/2].
 std::vector<double> dof_angles(const JointLimits& joint, const Eigen::Quaterniond& rotation);
 
+// How far `rotation` lies outside what the joint can make, in radians: the angle between it and
+// the nearest rotation that the joint's DOFs make within their limits (0 when it is one of them;
+// a joint without a DOF about some axis cannot turn about it).
+double limit_excess(const JointLimits& joint, const Eigen::Quaterniond& rotation);
+
 // The table as Markdown: one row per DOF with axis, limits in degrees and radians, and source.
 std::string joint_limits_markdown(const std::vector<JointLimits>& table);
 

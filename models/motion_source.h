@@ -12,17 +12,60 @@
 
 namespace simcap {
 
-// Deterministic procedural motions for the built-in default and for tests.
+// Parameters of the action kinds, in the units of their scene keys (scenes/README.md).
+struct JumpsSpec {
+  int count = 2;            // forward jumps with both feet together
+  double distance_m = 0.4;  // length of each jump
+  double height_m = 0.15;   // rise of the pelvis in flight over its take-off height
+};
+struct TurnaroundSpec {
+  double distance_m = 1.2;  // walked before the 180 degree turn (at ProceduralSpec::speed_m_s)
+};
+struct SquatSpec {
+  int count = 3;
+  double depth = 0.3;  // lowest pelvis descent, a fraction of the standing hip height
+};
+struct ArmsCrossSpec {
+  int count = 3;  // times the arms cross in front of the chest
+};
+struct SideStepsSpec {
+  int count = 2;            // grapevine cycles of four steps, the trailing leg crossing
+  double distance_m = 1.2;  // sideways travel, positive to the actor's left
+};
+struct BendForwardSpec {
+  int count = 2;  // times the hands go down to the floor
+};
+struct KickSpec {
+  int count = 2;        // front kicks, right leg first, then alternating
+  double height = 0.8;  // kicking ankle's highest point, a fraction of the standing hip height
+};
+struct ArmSwingsSpec {
+  double frequency_hz = 1.5;  // full swings (forward and back) per second
+  double amplitude_deg = 60;  // shoulder flexion at the front of a swing
+};
+
+// Deterministic procedural motions for the built-in default, tests and the motion suite.
 struct ProceduralSpec {
   // One of: "stand" (neutral stance with slight sway), "tpose", "walk_in_place", "walk_path"
   // (walk along a circle of `path_radius`), "arm_raise" (both arms up and down), "turn" (a turn
-  // on the spot).
+  // on the spot), or an action: "jumps", "turnaround", "squat", "arms_cross", "side_steps",
+  // "bend_forward", "kick", "arm_swings" (models/procedural_actions.h).
   std::string kind = "walk_path";
   double duration_s = 4.0;
   double speed_m_s = 1.2;    // walking speed (walk_path) or step rate scale (walk_in_place)
   double path_radius = 1.0;  // metres (walk_path)
   // Total turn in degrees, counter-clockwise seen from above (turn).
   double turn_degrees = 360.0;
+  // The action kinds' parameters (models/procedural_actions.h); each action starts and ends
+  // standing still and its repetitions fill the duration.
+  JumpsSpec jumps{};
+  TurnaroundSpec turnaround{};
+  SquatSpec squat{};
+  ArmsCrossSpec arms_cross{};
+  SideStepsSpec side_steps{};
+  BendForwardSpec bend_forward{};
+  KickSpec kick{};
+  ArmSwingsSpec arm_swings{};
 };
 
 struct MotionSource {

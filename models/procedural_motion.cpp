@@ -6,62 +6,22 @@
 // and tests check it with measure_feet().
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <memory>
 #include <numbers>
 
 #include "core/error.h"
 #include "models/motion_source.h"
 #include "models/pose.h"
+#include "models/procedural_actions.h"
+#include "models/procedural_rig.h"
 
 namespace simcap {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-Eigen::Quaterniond rot_x(double a) {
-  return Eigen::Quaterniond(Eigen::AngleAxisd(a, Eigen::Vector3d::UnitX()));
-}
-Eigen::Quaterniond rot_y(double a) {
-  return Eigen::Quaterniond(Eigen::AngleAxisd(a, Eigen::Vector3d::UnitY()));
-}
-Eigen::Quaterniond rot_z(double a) {
-  return Eigen::Quaterniond(Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()));
-}
-
-double smoothstep(double x) {
-  x = std::clamp(x, 0.0, 1.0);
-  return x * x * (3 - 2 * x);
-}
-
-// Orthonormal frame with its first axis along `along` and its second towards `forward`.
-Eigen::Matrix3d frame(const Eigen::Vector3d& along, const Eigen::Vector3d& forward) {
-  const Eigen::Vector3d a = along.normalized();
-  const Eigen::Vector3d f = (forward - forward.dot(a) * a).normalized();
-  Eigen::Matrix3d m;
-  m << a, f, a.cross(f);
-  return m;
-}
-
-// World rotation that turns a bone lying along `rest` in the neutral pose (facing +Z) into one
-// along `bone` facing `forward`: bends stay in the sagittal plane of the foot.
-Eigen::Quaterniond aim(const Eigen::Vector3d& rest, const Eigen::Vector3d& bone,
-                       const Eigen::Vector3d& forward) {
-  return Eigen::Quaterniond(frame(bone, forward) *
-                            frame(rest, Eigen::Vector3d::UnitZ()).transpose());
-}
-
-struct Leg {
-  int hip, knee, ankle, ball;
-  double thigh, shin;               // segment lengths
-  Eigen::Vector3d ball_from_root;   // neutral, horizontal part only
-  Eigen::Vector3d ankle_from_ball;  // neutral
-  double ball_height;               // neutral height of the ball joint's centre
-};
-
-// Where a foot is: its ankle centre, heading and heel-rise pitch (toes down, about the ball).
-struct Foot {
-  Eigen::Vector3d ankle;
-  double yaw = 0, pitch = 0;
-};
+using namespace procedural;
 
 struct Gait {
   double stride_s = 1.0;    // one left and one right step
@@ -72,52 +32,34 @@ struct Gait {
   double pelvis_yaw = 0.0;  // rad, the pelvis turns with the swinging leg
   double arm_swing = 0.0;   // rad, shoulder flexion amplitude
   double lean = 0.0;        // rad, forward trunk lean
+  double toe_drop = 0.0;    // rad, toes down in mid-swing
 };
 
-class Generator {
+class Generator : Rig {
  public:
-  Generator(const ProceduralSpec& spec, const Skeleton& skeleton) : spec_(spec), s_(skeleton) {
-    root_ = s_.require("humanoid_root");
-    if (root_ != 0) throw Error("procedural motion: humanoid_root must be the skeleton's root");
-    for (int side = 0; side < 2; ++side) {
-      const std::string p = side == 0 ? "l_" : "r_";
-      Leg& leg = legs_[side];
-      leg.hip = s_.require(p + "hip");
-      leg.knee = s_.require(p + "knee");
-      leg.ankle = s_.require(p + "talocrural");
-      leg.ball = s_.require(p + "metatarsophalangeal_2");
-      leg.thigh = (c(leg.knee) - c(leg.hip)).norm();
-      leg.shin = (c(leg.ankle) - c(leg.knee)).norm();
-      leg.ball_from_root = c(leg.ball) - c(root_);
-      leg.ball_from_root.y() = 0;
-      leg.ankle_from_ball = c(leg.ankle) - c(leg.ball);
-      leg.ball_height = c(leg.ball).y();
-      shoulder_[side] = s_.require(p + "shoulder");
-      elbow_[side] = s_.require(p + "elbow");
-    }
-    lumbar_ = first_of({"vl5", "vl3", "vl1"});
-    thorax_ = first_of({"vl1", "vt10", "vt6"});
-    chest_ = first_of({"vt6", "vt10", "vt1"});
-    head_ = first_of({"skullbase", "vc4", "vc7"});
-    const double leg_length = legs_[0].thigh + legs_[0].shin;
+  Generator(const ProceduralSpec& spec, const Skeleton& skeleton) : Rig(skeleton), spec_(spec) {
+    const double leg_length = this->leg_length();
 
     const std::string& kind = spec_.kind;
-    if (kind == "walk_path" || kind == "walk_in_place" || kind == "turn") {
+    const bool travels = kind == "walk_path" || kind == "turnaround";
+    if (travels || kind == "walk_in_place" || kind == "turn") {
       if (!(spec_.speed_m_s > 0)) throw Error("procedural motion: speed_m_s must be positive");
       // Cadence grows with the square root of speed (about 1.8 steps/s at 1.2 m/s for an
       // adult, whose hip-to-ankle length is 0.86 m) and falls with leg length as a pendulum's
       // rate does; in place, speed only scales the step rate.
       const double relative = spec_.speed_m_s / 1.2;
-      const double steps_per_s = 1.8 * (kind == "walk_path" ? std::sqrt(relative) : relative) *
-                                 std::sqrt(0.86 / leg_length);
+      const double steps_per_s =
+          1.8 * (travels ? std::sqrt(relative) : relative) * std::sqrt(0.86 / leg_length);
       gait_.stride_s = 2.0 / steps_per_s;
-      const double step = kind == "walk_path" ? spec_.speed_m_s / steps_per_s : 0.0;
-      gait_.heel_rise = std::min(0.9, 0.14 + 0.9 * step / leg_length);
-      gait_.lift = (kind == "walk_path" ? 0.07 : 0.10) * leg_length;
+      const double step = travels ? spec_.speed_m_s / steps_per_s : 0.0;
+      // The toes stay flat as the heel rises, within their 40 degree extension.
+      gait_.heel_rise = std::min(0.68, 0.14 + 0.9 * step / leg_length);
+      gait_.lift = (travels ? 0.07 : 0.10) * leg_length;
       gait_.sway = 0.025;
-      gait_.pelvis_yaw = kind == "walk_path" ? 0.07 : 0.0;
-      gait_.arm_swing = kind == "walk_path" ? 0.35 : 0.2;
-      gait_.lean = kind == "walk_path" ? 0.05 : 0.02;
+      gait_.pelvis_yaw = travels ? 0.07 : 0.0;
+      gait_.arm_swing = travels ? 0.35 : 0.2;
+      gait_.lean = travels ? 0.05 : 0.02;
+      gait_.toe_drop = travels ? 0.12 : 0.3;
       if (kind == "walk_path" && !(spec_.path_radius > 0)) {
         throw Error("procedural motion: path_radius must be positive");
       }
@@ -148,16 +90,6 @@ class Generator {
   }
 
  private:
-  Eigen::Vector3d c(int j) const { return s_[j].center; }
-  int first_of(std::initializer_list<const char*> names) const {
-    for (const char* n : names) {
-      if (s_.find(n) >= 0) return s_.find(n);
-    }
-    return -1;
-  }
-  void rotate(Pose& pose, int joint, const Eigen::Quaterniond& q) const {
-    if (joint >= 0) pose.rotations[joint] = q * pose.rotations[joint];
-  }
   double duration() const { return spec_.duration_s > 0 ? spec_.duration_s : 1.0; }
 
   // Ground point under the pelvis and heading at time t (any t, also before 0 and after the end,
@@ -171,6 +103,8 @@ class Generator {
       *heading = a;
     } else if (spec_.kind == "turn") {
       *heading = spec_.turn_degrees * kPi / 180 * smoothstep(t / duration());
+    } else if (spec_.kind == "turnaround") {
+      turnaround_path(spec_, t, ground, heading);
     }
   }
 
@@ -189,6 +123,9 @@ class Generator {
     const Leg& leg = legs_[side];
     Plant p{ground + rot_y(heading) * leg.ball_from_root, heading};
     p.ball.y() = leg.ball_height;
+    // The foot points where the pelvis points half way through the stance, so that a turning
+    // pelvis twists the hip equally far either way.
+    path(t_mid + 0.1 * gait_.stance * gait_.stride_s, &ground, &p.yaw);
     return p;
   }
   // The ankle of a foot whose ball centre is at `ball`, pitched (heel up) about the ball.
@@ -211,55 +148,18 @@ class Generator {
     // The foot rises before it moves forward and comes down vertically onto its plant, so it
     // does not skim the floor.
     const double u = (phase - gait_.stance) / (1 - gait_.stance);
-    const double w = smoothstep((u - 0.1) / 0.85);
+    const double w = smoothstep((u - 0.05) / 0.85);
     const Eigen::Vector3d from = ankle_of(side, now, gait_.heel_rise);
     const Eigen::Vector3d to = ankle_of(side, next, 0);
-    f.ankle = (1 - w) * from + w * to + Eigen::Vector3d(0, gait_.lift * std::sin(kPi * u), 0);
+    const double lift = gait_.lift * smoothstep(u / 0.2) * smoothstep((1 - u) / 0.25);
+    f.ankle = (1 - w) * from + w * to + Eigen::Vector3d(0, lift, 0);
     f.yaw = now.yaw + w * std::remainder(next.yaw - now.yaw, 2 * kPi);
-    f.pitch = gait_.heel_rise * (1 - w);
+    // The foot levels early in the swing, clearing the toes, and drops its toes in mid-swing as
+    // the ankle relaxes under the tilted shin; the toes straighten once off the floor.
+    f.pitch = gait_.heel_rise * (1 - smoothstep(u / 0.4)) + gait_.toe_drop * bump(u);
+    f.toes = smoothstep(u / 0.3);
+    f.air = smoothstep(u / 0.15) * smoothstep((1 - u) / 0.25);
     return f;
-  }
-
-  // Two-bone IK of one leg for the pose's current pelvis, then the foot and toes.
-  void solve_leg(int side, const Foot& f, Pose& pose) const {
-    const Leg& leg = legs_[side];
-    const auto world = forward_kinematics(s_, pose);
-    const Eigen::Vector3d hip = world[leg.hip].translation();
-    const Eigen::Vector3d forward = rot_y(f.yaw) * Eigen::Vector3d::UnitZ();
-    const Eigen::Vector3d to_ankle = f.ankle - hip;
-    const double d = std::clamp(to_ankle.norm(), std::abs(leg.thigh - leg.shin) + 1e-9,
-                                leg.thigh + leg.shin - 1e-9);
-    const Eigen::Vector3d u = to_ankle.normalized();
-    const Eigen::Vector3d w = (forward - forward.dot(u) * u).normalized();
-    const double cos_hip =
-        (leg.thigh * leg.thigh + d * d - leg.shin * leg.shin) / (2 * leg.thigh * d);
-    const Eigen::Vector3d knee =
-        hip + leg.thigh * (cos_hip * u + std::sqrt(std::max(0.0, 1 - cos_hip * cos_hip)) * w);
-    const Eigen::Vector3d ankle = hip + d * u;
-    const Eigen::Quaterniond thigh = aim(c(leg.knee) - c(leg.hip), knee - hip, forward);
-    const Eigen::Quaterniond shin = aim(c(leg.ankle) - c(leg.knee), ankle - knee, forward);
-    const Eigen::Quaterniond foot = rot_y(f.yaw) * rot_x(f.pitch);
-    const Eigen::Quaterniond parent(world[s_[leg.hip].parent].linear());
-    pose.rotations[leg.hip] = (parent.conjugate() * thigh).normalized();
-    pose.rotations[leg.knee] = (thigh.conjugate() * shin).normalized();
-    pose.rotations[leg.ankle] = (shin.conjugate() * foot).normalized();
-    pose.rotations[leg.ball] = rot_x(-f.pitch);  // toes stay flat while the heel rises
-  }
-
-  // The highest root that both legs reach (with a little knee bend left), capped at `cap`.
-  double pelvis_height(const Eigen::Vector3d& root_xz, const Eigen::Quaterniond& root_rotation,
-                       const Foot (&feet)[2], double cap) const {
-    double height = cap;
-    for (int side = 0; side < 2; ++side) {
-      const Leg& leg = legs_[side];
-      const Eigen::Vector3d hip = root_rotation * (c(leg.hip) - c(root_));
-      const double reach = 0.995 * (leg.thigh + leg.shin);
-      const double dh = std::hypot(root_xz.x() + hip.x() - feet[side].ankle.x(),
-                                   root_xz.z() + hip.z() - feet[side].ankle.z());
-      const double rise = dh < reach ? std::sqrt(reach * reach - dh * dh) : 0.0;
-      height = std::min(height, feet[side].ankle.y() + rise - hip.y());
-    }
-    return height;
   }
 
   void walk(double t, Pose& pose) const {
@@ -286,10 +186,10 @@ class Generator {
       const double back = (side == 0 ? 1 : -1) * gait_.arm_swing * swing;
       const double out = side == 0 ? 0.06 : -0.06;
       pose.rotations[shoulder_[side]] = rot_z(out) * rot_x(back);
-      pose.rotations[elbow_[side]] = rot_x(-(0.25 + 0.6 * std::max(0.0, -back)));
+      // More bent in front than behind, linearly so that the elbow's speed never jumps.
+      pose.rotations[elbow_[side]] = rot_x(-(0.25 + 0.3 * (gait_.arm_swing - back)));
     }
-    solve_leg(0, feet[0], pose);
-    solve_leg(1, feet[1], pose);
+    stand_on(pose, feet, nullptr);
   }
 
   void stand(double t, Pose& pose) const {
@@ -307,23 +207,22 @@ class Generator {
       pose.rotations[shoulder_[side]] = rot_z(out) * rot_x(0.04 * std::sin(2 * kPi * t / 5.0 + 1));
       pose.rotations[elbow_[side]] = rot_x(-0.12);
     }
-    solve_leg(0, feet[0], pose);
-    solve_leg(1, feet[1], pose);
+    stand_on(pose, feet, nullptr);
   }
 
   ProceduralSpec spec_;
-  const Skeleton& s_;
-  int root_ = 0, lumbar_ = -1, thorax_ = -1, chest_ = -1, head_ = -1;
-  Leg legs_[2];
-  int shoulder_[2], elbow_[2];
   Gait gait_;
 };
 
 }  // namespace
 
 const std::vector<std::string>& procedural_kinds() {
-  static const std::vector<std::string> kinds = {"stand",     "tpose",     "walk_in_place",
-                                                 "walk_path", "arm_raise", "turn"};
+  static const std::vector<std::string> kinds = [] {
+    std::vector<std::string> k = {"stand",     "tpose", "walk_in_place", "walk_path",
+                                  "arm_raise", "turn",  "turnaround"};
+    k.insert(k.end(), action_kinds().begin(), action_kinds().end());
+    return k;
+  }();
   return kinds;
 }
 
@@ -334,11 +233,21 @@ Motion generate_procedural(const ProceduralSpec& spec, const Skeleton& skeleton,
   if (!(spec.duration_s >= 0) || !std::isfinite(spec.duration_s)) {
     throw Error("procedural motion: duration_s must be zero or positive");
   }
-  const Generator generator(spec, skeleton);
+  if (const auto p = parameter_problem(spec)) {
+    throw Error("procedural motion " + spec.kind + ": " + p->key + " " + p->message);
+  }
+  std::function<Pose(double)> pose_at;
+  if (is_action(spec.kind)) {
+    pose_at = action_poses(spec, skeleton);
+  } else {
+    pose_at = [generator = std::make_shared<const Generator>(spec, skeleton)](double t) {
+      return generator->pose_at(t);
+    };
+  }
   Motion motion;
   motion.fps = fps;
   const int frames = static_cast<int>(std::floor(spec.duration_s * fps + 1e-6)) + 1;
-  for (int i = 0; i < frames; ++i) motion.frames.push_back(generator.pose_at(i / fps));
+  for (int i = 0; i < frames; ++i) motion.frames.push_back(pose_at(i / fps));
   return motion;
 }
 

@@ -6,12 +6,14 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <optional>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/rig.h"
+#include "models/procedural_actions.h"
 #include "models/shipped_assets.h"
 #include "models/urdf_io.h"
 #include "scenes/scene.h"
@@ -335,6 +337,42 @@ std::vector<Camera> SceneReader::read_rig(const Field& f, const Room& room) cons
   return cams;
 }
 
+// The keys of the action `p.kind` (its own, in scenes/README.md), read with `take`; their ranges
+// and how they fit the duration are checked by procedural::parameter_problem.
+template <class Take>
+void read_action_keys(ProceduralSpec& p, const Take& take) {
+  const auto count = [&](int* out) {
+    if (auto v = take("count")) *out = v->integer(-1000000, 1000000);
+  };
+  const auto number = [&](const char* key, double* out) {
+    if (auto v = take(key)) *out = v->number(yaml::any_finite());
+  };
+  const std::string& k = p.kind;
+  if (k == "jumps") {
+    count(&p.jumps.count);
+    number("distance", &p.jumps.distance_m);
+    number("height", &p.jumps.height_m);
+  } else if (k == "turnaround") {
+    number("distance", &p.turnaround.distance_m);
+  } else if (k == "squat") {
+    count(&p.squat.count);
+    number("depth", &p.squat.depth);
+  } else if (k == "arms_cross") {
+    count(&p.arms_cross.count);
+  } else if (k == "side_steps") {
+    count(&p.side_steps.count);
+    number("distance", &p.side_steps.distance_m);
+  } else if (k == "bend_forward") {
+    count(&p.bend_forward.count);
+  } else if (k == "kick") {
+    count(&p.kick.count);
+    number("height", &p.kick.height);
+  } else if (k == "arm_swings") {
+    number("frequency", &p.arm_swings.frequency_hz);
+    number("amplitude", &p.arm_swings.amplitude_deg);
+  }
+}
+
 MotionSource SceneReader::read_motion(const Field& f) const {
   Map m(f);
   MotionSource src;
@@ -367,11 +405,25 @@ MotionSource SceneReader::read_motion(const Field& f) const {
       kind.expected("one of " + scene_names::one_of(procedural_kinds()));
     }
     src.procedural.kind = kind.node().Scalar();
-    if (auto v = m.take("duration")) src.procedural.duration_s = v->number(yaml::positive(3600));
-    if (auto v = m.take("speed")) src.procedural.speed_m_s = v->number(yaml::positive(20));
-    if (auto v = m.take("radius")) src.procedural.path_radius = v->number(yaml::positive(100));
-    if (auto v = m.take("turn_deg"))
-      src.procedural.turn_degrees = v->number(yaml::closed(-3600, 3600));
+    // Keys an action's checks may blame (models/procedural_actions.h).
+    std::map<std::string, Field, std::less<>> given;
+    const auto take = [&](const char* key) {
+      auto v = m.take(key);
+      if (v) given.emplace(key, *v);
+      return v;
+    };
+    ProceduralSpec& p = src.procedural;
+    if (auto v = take("duration")) p.duration_s = v->number(yaml::positive(3600));
+    if (auto v = take("speed")) p.speed_m_s = v->number(yaml::positive(20));
+    if (auto v = m.take("radius")) p.path_radius = v->number(yaml::positive(100));
+    if (auto v = m.take("turn_deg")) p.turn_degrees = v->number(yaml::closed(-3600, 3600));
+    read_action_keys(p, take);
+    if (const auto problem = procedural::parameter_problem(p)) {
+      const auto at = given.find(problem->key);
+      (at != given.end() ? at->second : f)
+          .fail((at != given.end() ? "" : "the default " + problem->key + " of " + p.kind + " ") +
+                problem->message);
+    }
   }
   m.finish();
   return src;

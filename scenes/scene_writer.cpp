@@ -103,6 +103,35 @@ void write_camera(YAML::Emitter& out, const Camera& cam) {
   out << YAML::EndMap;
 }
 
+// The keys of the action kind `p.kind` (read_action_keys in scene_loader.cpp).
+void write_action_keys(YAML::Emitter& out, const ProceduralSpec& p) {
+  const auto count = [&](int v) { out << YAML::Key << "count" << YAML::Value << v; };
+  const std::string& k = p.kind;
+  if (k == "jumps") {
+    count(p.jumps.count);
+    number(out, "distance", p.jumps.distance_m);
+    number(out, "height", p.jumps.height_m);
+  } else if (k == "turnaround") {
+    number(out, "distance", p.turnaround.distance_m);
+  } else if (k == "squat") {
+    count(p.squat.count);
+    number(out, "depth", p.squat.depth);
+  } else if (k == "arms_cross") {
+    count(p.arms_cross.count);
+  } else if (k == "side_steps") {
+    count(p.side_steps.count);
+    number(out, "distance", p.side_steps.distance_m);
+  } else if (k == "bend_forward") {
+    count(p.bend_forward.count);
+  } else if (k == "kick") {
+    count(p.kick.count);
+    number(out, "height", p.kick.height);
+  } else if (k == "arm_swings") {
+    number(out, "frequency", p.arm_swings.frequency_hz);
+    number(out, "amplitude", p.arm_swings.amplitude_deg);
+  }
+}
+
 void write_motion(YAML::Emitter& out, const MotionSource& m) {
   out << YAML::Key << "motion" << YAML::Value << YAML::BeginMap;
   if (!m.amc.empty()) {
@@ -127,6 +156,7 @@ void write_motion(YAML::Emitter& out, const MotionSource& m) {
     number(out, "speed", m.procedural.speed_m_s);
     number(out, "radius", m.procedural.path_radius);
     number(out, "turn_deg", m.procedural.turn_degrees);
+    write_action_keys(out, m.procedural);
   }
   out << YAML::EndMap;
 }

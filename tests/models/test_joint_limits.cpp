@@ -236,6 +236,56 @@ TEST(JointLimits, DofAnglesInvertDofRotation) {
       Error);
 }
 
+TEST(JointLimits, LimitExcessIsZeroInsideAndTheOvershootOutside) {
+  std::mt19937 rng(5);
+  for (const JointLimits& l : humanoid_joint_limits()) {
+    for (int trial = 0; trial < 20; ++trial) {
+      std::vector<double> angles;
+      for (const DofLimit& d : l.dofs) angles.push_back(uniform(rng, d.lower, d.upper));
+      EXPECT_LT(limit_excess(l, dof_rotation(l, angles)), 1e-9) << l.joint;
+    }
+  }
+  const auto rot = [](const Eigen::Vector3d& axis, double a) {
+    return Eigen::Quaterniond(Eigen::AngleAxisd(a, axis));
+  };
+  const JointLimits& knee = limits_of(humanoid_joint_limits(), "l_knee");
+  const JointLimits& hip = limits_of(humanoid_joint_limits(), "l_hip");
+  EXPECT_NEAR(limit_excess(knee, rot(kX, -0.2)), 0.2, 1e-9);                // hyperextended
+  EXPECT_NEAR(limit_excess(knee, rot(kX, 1.0) * rot(kY, 0.1)), 0.1, 1e-9);  // a knee cannot twist
+  EXPECT_LT(limit_excess(hip, rot(kX, -2.4)), 1e-9);                        // deep flexion
+  EXPECT_NEAR(limit_excess(hip, rot(kX, 1.8)), 1.8 - kPi / 2, 1e-9);        // far behind
+}
+
+TEST(JointLimits, LimitExcessMatchesABruteForceSearch) {
+  // Near gimbal lock (hip flexed 90 degrees) a rotation's Euler angles can lie far outside the
+  // box while one within it is close: compare with the best of a grid over the box.
+  std::mt19937 rng(11);
+  const auto rot = [](const Eigen::Vector3d& axis, double a) {
+    return Eigen::Quaterniond(Eigen::AngleAxisd(a, axis));
+  };
+  for (const char* name : {"r_hip", "l_shoulder"}) {
+    const JointLimits& l = limits_of(humanoid_joint_limits(), name);
+    for (int trial = 0; trial < 4; ++trial) {
+      const Eigen::Quaterniond q = rot(kZ, uniform(rng, -kPi, kPi)) *
+                                   rot(kX, uniform(rng, -1.75, -1.4)) *
+                                   rot(kY, uniform(rng, -kPi, kPi));
+      double best = INFINITY;
+      const double step = 2 * kPi / 180;
+      for (double a = l.dofs[0].lower; a <= l.dofs[0].upper; a += step) {
+        for (double b = l.dofs[1].lower; b <= l.dofs[1].upper; b += step) {
+          for (double c = l.dofs[2].lower; c <= l.dofs[2].upper; c += step) {
+            const Eigen::AngleAxisd e(q.conjugate() * rot(kZ, a) * rot(kX, b) * rot(kY, c));
+            best = std::min(best, e.angle());
+          }
+        }
+      }
+      const double excess = limit_excess(l, q);
+      EXPECT_LE(excess, best + 1e-9) << name;
+      EXPECT_GT(excess, best - 2 * step) << name;  // the grid is 2 degrees coarse
+    }
+  }
+}
+
 TEST(JointLimits, MarkdownListsEveryDof) {
   const std::string md = joint_limits_markdown(humanoid_joint_limits());
   for (const JointLimits& l : humanoid_joint_limits()) {

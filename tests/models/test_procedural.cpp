@@ -41,10 +41,10 @@ double correlation(const std::vector<double>& a, const std::vector<double>& b) {
 TEST(Procedural, EveryKindIsDeterministicWithTheRequestedLength) {
   const Skeleton s = build_humanoid();
   for (const auto& kind : procedural_kinds()) {
-    const Motion a = make(kind, 2.0, 25.0);
-    const Motion b = make(kind, 2.0, 25.0);
-    ASSERT_EQ(a.frames.size(), 51u) << kind;
-    EXPECT_DOUBLE_EQ(a.fps, 25.0);
+    const Motion a = make(kind, 6.0, 10.0);
+    const Motion b = make(kind, 6.0, 10.0);
+    ASSERT_EQ(a.frames.size(), 61u) << kind;
+    EXPECT_DOUBLE_EQ(a.fps, 10.0);
     for (size_t f = 0; f < a.frames.size(); ++f) {
       EXPECT_EQ(a.frames[f].root_position, b.frames[f].root_position) << kind;
       for (int j = 0; j < s.size(); ++j) {
@@ -56,7 +56,8 @@ TEST(Procedural, EveryKindIsDeterministicWithTheRequestedLength) {
 
 TEST(Procedural, FeetStayOnTheFloorWithoutSliding) {
   const Skeleton s = build_humanoid();
-  for (const auto& kind : procedural_kinds()) {
+  // The actions, jumps among them, have their own checks (test_procedural_actions.cpp).
+  for (const char* kind : {"stand", "tpose", "walk_in_place", "walk_path", "arm_raise", "turn"}) {
     const FootStats feet = measure_feet(humanoid_feet(s, make(kind, 6.0)));
     // Some foot is always down: the lowest sole point is on the floor in every frame.
     EXPECT_GT(feet.lowest_min, -1e-6) << kind;

@@ -51,6 +51,14 @@ actors:
   - motion: {bvh: walk.bvh}
   - motion: {procedural: walk_path, duration: 2.5, speed: 0.8, radius: 1.25}
   - motion: {procedural: turn, turn_deg: -45}
+  - motion: {procedural: jumps, duration: 5, count: 2, distance: 0.6, height: 0.2}
+  - motion: {procedural: turnaround, duration: 5, speed: 1.0, distance: 1.25}
+  - motion: {procedural: squat, count: 2, depth: 0.25}
+  - motion: {procedural: arms_cross, count: 1}
+  - motion: {procedural: side_steps, duration: 3, count: 1, distance: -0.625}
+  - motion: {procedural: bend_forward, count: 1}
+  - motion: {procedural: kick, duration: 3.5, count: 1, height: 0.6}
+  - motion: {procedural: arm_swings, frequency: 1.25, amplitude: 45}
 render:
   fps: 24
   first_frame: 3
