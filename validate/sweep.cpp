@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
+#include <utility>
 
 #include "core/atomic_file.h"
 #include "core/csv.h"
@@ -38,6 +40,77 @@ double pck_at(const Evaluation& ev, double threshold) {
   return std::nan("");
 }
 
+// The joint with the largest mean error.
+const JointScore& worst_joint(const Evaluation& ev) {
+  return *std::max_element(
+      ev.per_joint.begin(), ev.per_joint.end(),
+      [](const JointScore& a, const JointScore& b) { return a.mpjpe_mm < b.mpjpe_mm; });
+}
+
+// Tracked frames per second of wall time (the whole track stage, decoding included).
+double track_fps(const SweepOutcome& o) {
+  return o.evaluation && o.track_s > 0 ? o.evaluation->frames.size() / o.track_s : std::nan("");
+}
+
+// One table cell per metric, in the order of `kColumns`.
+struct Column {
+  const char* heading;
+  bool lower_is_better;
+  double (*value)(const SweepOutcome&);
+  int decimals;
+  double scale;  // shown as value x scale
+  const char* unit;
+};
+
+const Column kColumns[] = {
+    {"MPJPE mm", true, [](const SweepOutcome& o) { return o.evaluation->mpjpe_mm; }, 1, 1, ""},
+    {"PA-MPJPE mm", true, [](const SweepOutcome& o) { return o.evaluation->pa_mpjpe_mm; }, 1, 1,
+     ""},
+    {"PCK@100", false, [](const SweepOutcome& o) { return pck_at(*o.evaluation, 100); }, 1, 100,
+     "%"},
+    {"failed", true, [](const SweepOutcome& o) { return o.evaluation->failures.failed_fraction; },
+     1, 100, "%"},
+    {"worst joint mm", true,
+     [](const SweepOutcome& o) { return worst_joint(*o.evaluation).mpjpe_mm; }, 1, 1, ""},
+    {"frames/s", false, track_fps, 1, 1, ""},
+};
+
+// The mean and the worst of each column over the points that ran; the worst row also names the
+// worst joint of the point with the largest worst-joint error.
+struct Summary {
+  std::vector<double> mean, worst;
+  std::string worst_joint;
+};
+
+std::optional<Summary> summarize(const std::vector<SweepOutcome>& outcomes) {
+  std::vector<const SweepOutcome*> ran;
+  for (const auto& o : outcomes) {
+    if (o.evaluation) ran.push_back(&o);
+  }
+  if (ran.empty()) return std::nullopt;
+  Summary s;
+  for (const Column& c : kColumns) {
+    double sum = 0, worst = c.value(*ran.front());
+    for (const SweepOutcome* o : ran) {
+      const double v = c.value(*o);
+      sum += v;
+      worst = c.lower_is_better ? std::max(worst, v) : std::min(worst, v);
+    }
+    s.mean.push_back(sum / ran.size());
+    s.worst.push_back(worst);
+  }
+  const auto by_worst_joint = [](const SweepOutcome* a, const SweepOutcome* b) {
+    return worst_joint(*a->evaluation).mpjpe_mm < worst_joint(*b->evaluation).mpjpe_mm;
+  };
+  s.worst_joint =
+      worst_joint(*(*std::max_element(ran.begin(), ran.end(), by_worst_joint))->evaluation).joint;
+  return s;
+}
+
+std::string cell(const Column& c, double v) {
+  return std::isnan(v) ? "-" : fixed(v * c.scale, c.decimals) + c.unit;
+}
+
 std::string relative_report(const SweepOutcome& o, const fs::path& out) {
   return o.report.empty() ? "" : o.report.lexically_relative(out).generic_string();
 }
@@ -46,13 +119,14 @@ void write_csv(const SweepSpec& spec, const std::vector<SweepPoint>& points,
                const std::vector<SweepOutcome>& outcomes, const fs::path& out) {
   std::vector<std::string> columns = {"point"};
   for (const auto& a : spec.axes) columns.push_back(csv_cell(a.name));
-  for (const char* c :
-       {"status", "frames", "mpjpe_mm", "pa_mpjpe_mm", "pck_50mm", "pck_100mm", "pck_150mm",
-        "rmse_mean_mm", "wrists_elbows_mm", "failed_fraction", "report"}) {
+  for (const char* c : {"status", "frames", "mpjpe_mm", "pa_mpjpe_mm", "pck_50mm", "pck_100mm",
+                        "pck_150mm", "rmse_mean_mm", "wrists_elbows_mm", "failed_fraction",
+                        "worst_joint", "worst_joint_mm", "report"}) {
     columns.push_back(c);
   }
   CsvWriter csv(out / "table.csv", columns);
-  CsvWriter times(out / "timings.csv", {"point", "render_s", "track_s", "validate_s"});
+  CsvWriter times(out / "timings.csv",
+                  {"point", "render_s", "track_s", "validate_s", "track_frames_per_s"});
   for (size_t i = 0; i < outcomes.size(); ++i) {
     const SweepOutcome& o = outcomes[i];
     csv.out() << i;
@@ -63,13 +137,17 @@ void write_csv(const SweepSpec& spec, const std::vector<SweepPoint>& points,
                 << fixed(ev.pa_mpjpe_mm, 2) << ',' << fixed(pck_at(ev, 50), 4) << ','
                 << fixed(pck_at(ev, 100), 4) << ',' << fixed(pck_at(ev, 150), 4) << ','
                 << fixed(ev.rmse_mean_mm, 2) << ',' << fixed(ev.wrists_elbows_mm, 2) << ','
-                << fixed(ev.failures.failed_fraction, 4);
+                << fixed(ev.failures.failed_fraction, 4) << ',' << worst_joint(ev).joint << ','
+                << fixed(worst_joint(ev).mpjpe_mm, 2);
     } else {
-      csv.out() << ",error: " << csv_cell(o.error) << ",,,,,,,,,";
+      csv.out() << ",error: " << csv_cell(o.error) << ",,,,,,,,,,,";
     }
     csv.out() << ',' << relative_report(o, out) << '\n';
     times.out() << i << ',' << fixed(o.render_s, 2) << ',' << fixed(o.track_s, 2) << ','
-                << fixed(o.validate_s, 2) << '\n';
+                << fixed(o.validate_s, 2) << ',';
+    const double fps = track_fps(o);
+    if (!std::isnan(fps)) times.out() << fixed(fps, 1);
+    times.out() << '\n';
   }
   csv.commit();
   times.commit();
@@ -119,7 +197,8 @@ std::string html_table(const SweepSpec& spec, const std::vector<SweepPoint>& poi
   std::string s = "<table>\n<tr><th>#</th>";
   for (const auto& a : spec.axes) s += "<th>" + xml_escape(a.name) + "</th>";
   s += "<th>MPJPE mm</th><th>PA-MPJPE mm</th><th>PCK@50</th><th>PCK@100</th><th>PCK@150</th>"
-       "<th>RMSE mm</th><th>wrists+elbows mm</th><th>failed frames</th><th>report</th></tr>\n";
+       "<th>RMSE mm</th><th>wrists+elbows mm</th><th>failed frames</th><th>worst joint</th>"
+       "<th>frames/s</th><th>report</th></tr>\n";
   for (size_t i = 0; i < outcomes.size(); ++i) {
     const SweepOutcome& o = outcomes[i];
     s += "<tr><td>" + std::to_string(i) + "</td>";
@@ -130,15 +209,29 @@ std::string html_table(const SweepSpec& spec, const std::vector<SweepPoint>& poi
            {fixed(ev.mpjpe_mm, 1), fixed(ev.pa_mpjpe_mm, 1), fixed(100 * pck_at(ev, 50), 1) + "%",
             fixed(100 * pck_at(ev, 100), 1) + "%", fixed(100 * pck_at(ev, 150), 1) + "%",
             fixed(ev.rmse_mean_mm, 1), fixed(ev.wrists_elbows_mm, 1),
-            fixed(100 * ev.failures.failed_fraction, 1) + "%"}) {
-        s += "<td>" + v + "</td>";
+            fixed(100 * ev.failures.failed_fraction, 1) + "%",
+            worst_joint(ev).joint + " " + fixed(worst_joint(ev).mpjpe_mm, 1) + " mm",
+            cell(kColumns[5], track_fps(o))}) {
+        s += "<td>" + xml_escape(v) + "</td>";
       }
     } else {
-      s += "<td colspan=\"8\">failed: " + xml_escape(o.error) + "</td>";
+      s += "<td colspan=\"10\">failed: " + xml_escape(o.error) + "</td>";
     }
     const std::string link = relative_report(o, out);
     s += "<td>" + (link.empty() ? "" : "<a href=\"" + xml_escape(link) + "\">report</a>") +
          "</td></tr>\n";
+  }
+  if (const auto sum = summarize(outcomes)) {
+    // Only the columns the summary has; the others stay empty.
+    const auto row = [&](const char* name, const std::vector<double>& v, const std::string& joint) {
+      s += "<tr><th colspan=\"" + std::to_string(spec.axes.size() + 1) + "\">" + name + "</th>";
+      s += "<td>" + cell(kColumns[0], v[0]) + "</td><td>" + cell(kColumns[1], v[1]) +
+           "</td><td></td><td>" + cell(kColumns[2], v[2]) + "</td><td></td><td></td><td></td><td>" +
+           cell(kColumns[3], v[3]) + "</td><td>" + xml_escape(joint) + cell(kColumns[4], v[4]) +
+           " mm</td><td>" + cell(kColumns[5], v[5]) + "</td><td></td></tr>\n";
+    };
+    row("mean", sum->mean, "");
+    row("worst", sum->worst, sum->worst_joint + " ");
   }
   return s + "</table>\n";
 }
@@ -154,6 +247,40 @@ std::string config_text(const LoopConfig& c) {
 }
 
 }  // namespace
+
+std::string sweep_table_text(const SweepSpec& spec, const std::vector<SweepPoint>& points,
+                             const std::vector<SweepOutcome>& outcomes) {
+  std::string s;
+  char buf[512];
+  const auto line = [&](const std::string& label, const std::vector<std::string>& cells,
+                        const std::string& joint) {
+    std::snprintf(buf, sizeof buf, "  %-24s %9s %12s %8s %8s  %-16s %7s %9s\n", label.c_str(),
+                  cells[0].c_str(), cells[1].c_str(), cells[2].c_str(), cells[3].c_str(),
+                  joint.c_str(), cells[4].c_str(), cells[5].c_str());
+    s += buf;
+  };
+  line(spec.axes.front().name, {"MPJPE mm", "PA-MPJPE mm", "PCK@100", "failed", "mm", "frames/s"},
+       "worst joint");
+  for (size_t i = 0; i < outcomes.size(); ++i) {
+    std::string label;
+    for (const auto& l : points[i].labels) label += (label.empty() ? "" : " / ") + l;
+    if (!outcomes[i].evaluation) {
+      s += "  " + label + "  failed: " + outcomes[i].error + "\n";
+      continue;
+    }
+    std::vector<std::string> cells;
+    for (const Column& c : kColumns) cells.push_back(cell(c, c.value(outcomes[i])));
+    line(label, cells, worst_joint(*outcomes[i].evaluation).joint);
+  }
+  if (const auto sum = summarize(outcomes)) {
+    for (const auto& [name, values] : {std::pair{"mean", sum->mean}, {"worst", sum->worst}}) {
+      std::vector<std::string> cells;
+      for (size_t c = 0; c < values.size(); ++c) cells.push_back(cell(kColumns[c], values[c]));
+      line(name, cells, std::string(name) == "worst" ? sum->worst_joint : "");
+    }
+  }
+  return s;
+}
 
 std::string sweep_point_folder(size_t index, const SweepPoint& point) {
   char num[16];

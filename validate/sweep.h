@@ -15,10 +15,10 @@
 namespace simcap {
 
 struct SweepOutcome {
-  std::optional<Evaluation> evaluation;  // empty when the point failed
-  std::string error;                     // why it failed
-  std::filesystem::path report;          // the point's report.html
-  double render_s = 0, track_s = 0, validate_s = 0;
+  std::optional<Evaluation> evaluation;              // empty when the point failed
+  std::string error;                                 // why it failed
+  std::filesystem::path report;                      // the point's report.html
+  double render_s = 0, track_s = 0, validate_s = 0;  // wall time of each stage
 };
 
 // Renders, tracks and validates one point into `point_dir`. A simcap::Error it throws marks the
@@ -35,6 +35,12 @@ std::vector<SweepOutcome> run_sweep(const SweepSpec& spec, const std::filesystem
 void write_sweep_tables(const SweepSpec& spec, const std::vector<SweepPoint>& points,
                         const std::vector<SweepOutcome>& outcomes,
                         const std::filesystem::path& out);
+
+// The table `simcap stress` prints: per point MPJPE, PA-MPJPE, PCK@100, failed frames, the worst
+// joint and tracked frames/s, then a mean row and a worst row (each column's worst value; the
+// worst joint of the point whose worst joint is furthest off).
+std::string sweep_table_text(const SweepSpec& spec, const std::vector<SweepPoint>& points,
+                             const std::vector<SweepOutcome>& outcomes);
 
 // Folder name of point `index`: its number and labels, reduced to [A-Za-z0-9._-].
 std::string sweep_point_folder(size_t index, const SweepPoint& point);

@@ -28,23 +28,6 @@ RenderKey render_key(const LoopConfig& c) {
   return {c.scene, c.frames, c.seed, c.motion, c.scene_overrides};
 }
 
-void print_table(const SweepSpec& spec, const std::vector<SweepPoint>& points,
-                 const std::vector<SweepOutcome>& outcomes) {
-  std::printf("  %-24s %10s %12s %9s %9s\n", spec.axes.front().name.c_str(), "MPJPE mm",
-              "PA-MPJPE mm", "PCK@100", "failed");
-  for (size_t i = 0; i < outcomes.size(); ++i) {
-    std::string label;
-    for (const auto& l : points[i].labels) label += (label.empty() ? "" : " / ") + l;
-    const auto& ev = outcomes[i].evaluation;
-    if (!ev) {
-      std::printf("  %-24s failed: %s\n", label.c_str(), outcomes[i].error.c_str());
-      continue;
-    }
-    std::printf("  %-24s %10.1f %12.1f %8.1f%% %8.1f%%\n", label.c_str(), ev->mpjpe_mm,
-                ev->pa_mpjpe_mm, 100 * ev->pck[1].fraction, 100 * ev->failures.failed_fraction);
-  }
-}
-
 int run_stress(const StressArgs& args) {
   const SweepSpec spec = load_sweep(args.sweep);
   const std::vector<SweepPoint> points = sweep_points(spec);
@@ -74,7 +57,7 @@ int run_stress(const StressArgs& args) {
   }
   std::printf("simcap stress: %s\n",
               spec.title.empty() ? args.sweep.string().c_str() : spec.title.c_str());
-  print_table(spec, points, outcomes);
+  std::fputs(sweep_table_text(spec, points, outcomes).c_str(), stdout);
   std::printf("table: %s\nplot: %s\n", (args.out / "table.html").string().c_str(),
               (args.out / "mpjpe.svg").string().c_str());
   // A point may fail as a measurement (too few cameras to track); a sweep that measured
@@ -111,7 +94,8 @@ void add_stress(CLI::App& app, Action& action) {
       "Examples:\n"
       "  simcap stress stress/cameras.yaml -o out/stress-cameras\n"
       "  simcap stress stress/occlusion.yaml -o out/stress-occlusion\n"
-      "  simcap stress stress/silhouettes.yaml -o out/stress-silhouettes");
+      "  simcap stress stress/silhouettes.yaml -o out/stress-silhouettes\n"
+      "  simcap stress stress/motions.yaml -o out/stress-motions");
   cmd->callback([&action] { action = [] { return run_stress(args); }; });
 }
 

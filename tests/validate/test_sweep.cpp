@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <pugixml.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "core/atomic_file.h"
 #include "core/csv.h"
@@ -117,7 +120,8 @@ TEST(Sweep, BadFilesAreNamed) {
 }
 
 TEST(Sweep, ShippedSweepsLoad) {
-  for (const char* name : {"cameras.yaml", "occlusion.yaml", "silhouettes.yaml", "tracker.yaml"}) {
+  for (const char* name :
+       {"cameras.yaml", "motions.yaml", "occlusion.yaml", "silhouettes.yaml", "tracker.yaml"}) {
     const SweepSpec spec = load_sweep(fs::path(SIMCAP_SOURCE_DIR) / "stress" / name);
     EXPECT_GE(sweep_points(spec).size(), 2u) << name;
   }
@@ -142,6 +146,7 @@ SweepOutcome fake_loop(const SweepPoint& point, const fs::path& dir) {
   o.evaluation = evaluate(in);
   o.report = dir / "report" / "report.html";
   o.render_s = 1.5;
+  o.track_s = count;  // 2 frames: 1 frame/s with 2 cameras, 0.5 with 4
   return o;
 }
 
@@ -156,16 +161,18 @@ vary:
   ASSERT_EQ(outcomes.size(), 3u);
   EXPECT_FALSE(outcomes[1].evaluation);
 
-  CsvReader csv(
-      dir / "out" / "table.csv",
-      {"point", "cameras", "status", "frames", "mpjpe_mm", "pa_mpjpe_mm", "pck_50mm", "pck_100mm",
-       "pck_150mm", "rmse_mean_mm", "wrists_elbows_mm", "failed_fraction", "report"});
+  CsvReader csv(dir / "out" / "table.csv",
+                {"point", "cameras", "status", "frames", "mpjpe_mm", "pa_mpjpe_mm", "pck_50mm",
+                 "pck_100mm", "pck_150mm", "rmse_mean_mm", "wrists_elbows_mm", "failed_fraction",
+                 "worst_joint", "worst_joint_mm", "report"});
   ASSERT_TRUE(csv.next());
   EXPECT_EQ(csv.text(1), "2");
   EXPECT_EQ(csv.text(2), "ok");
   EXPECT_NEAR(csv.number(4), 45.0, 0.01);
   EXPECT_NEAR(csv.number(6), 1.0, 1e-9);
-  EXPECT_EQ(csv.text(12), "points/00_2/report/report.html");
+  EXPECT_EQ(csv.text(12), he15_joints().front());  // every joint is as far off: the first
+  EXPECT_NEAR(csv.number(13), 45.0, 0.01);
+  EXPECT_EQ(csv.text(14), "points/00_2/report/report.html");
   ASSERT_TRUE(csv.next());
   EXPECT_EQ(csv.text(2), "error: tracker: too few cameras; see log");
   ASSERT_TRUE(csv.next());
@@ -179,7 +186,42 @@ vary:
   EXPECT_NE(html.find("<h1>Cameras</h1>"), std::string::npos);
   EXPECT_NE(html.find("href=\"points/02_4/report/report.html\""), std::string::npos);
   EXPECT_NE(html.find("failed: tracker: too few cameras, see log"), std::string::npos);
-  EXPECT_TRUE(fs::exists(dir / "out" / "timings.csv"));
+  EXPECT_NE(html.find("<th colspan=\"2\">worst</th>"), std::string::npos);
+  CsvReader times(dir / "out" / "timings.csv",
+                  {"point", "render_s", "track_s", "validate_s", "track_frames_per_s"});
+  ASSERT_TRUE(times.next());
+  EXPECT_NEAR(times.number(4), 1.0, 1e-9);
+
+  // The printed table: a row per point, the mean over the points that ran and the worst value of
+  // each column (largest error, fewest frames/s).
+  const std::string text = sweep_table_text(spec, sweep_points(spec), outcomes);
+  const auto row = [&](const std::string& start) {
+    const size_t at = text.find("\n  " + start + " ");
+    if (at == std::string::npos) return std::string();
+    return text.substr(at + 1, text.find('\n', at + 1) - at - 1);
+  };
+  const auto words = [](const std::string& line) {
+    std::istringstream in(line);
+    std::vector<std::string> w;
+    for (std::string x; in >> x;) w.push_back(x);
+    return w;
+  };
+  const std::string joint = he15_joints().front();
+  EXPECT_EQ(words(row("2")),
+            (std::vector<std::string>{"2", "45.0", "0.0", "100.0%", "0.0%", joint, "45.0", "1.0"}))
+      << text;
+  EXPECT_NE(row("3").find("failed: tracker: too few cameras"), std::string::npos) << text;
+  // The means 33.75 mm and 0.75 frames/s are printed with one decimal, either way.
+  std::vector<std::string> mean = words(row("mean"));
+  ASSERT_EQ(mean.size(), 7u) << text;
+  EXPECT_NEAR(std::stod(mean[1]), 33.75, 0.051);
+  EXPECT_NEAR(std::stod(mean[5]), 33.75, 0.051);
+  EXPECT_NEAR(std::stod(mean[6]), 0.75, 0.051);
+  mean[1] = mean[5] = mean[6] = "";
+  EXPECT_EQ(mean, (std::vector<std::string>{"mean", "", "0.0", "100.0%", "0.0%", "", ""}));
+  EXPECT_EQ(words(row("worst")), (std::vector<std::string>{"worst", "45.0", "0.0", "100.0%", "0.0%",
+                                                           joint, "45.0", "0.5"}))
+      << text;
 }
 
 }  // namespace

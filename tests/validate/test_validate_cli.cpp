@@ -129,14 +129,14 @@ TEST(StressCli, SweepWritesOneRowPerPoint) {
                  &out),
       0)
       << out;
-  CsvReader csv(
-      dir / "out" / "table.csv",
-      {"point", "cameras", "masks", "status", "frames", "mpjpe_mm", "pa_mpjpe_mm", "pck_50mm",
-       "pck_100mm", "pck_150mm", "rmse_mean_mm", "wrists_elbows_mm", "failed_fraction", "report"});
+  CsvReader csv(dir / "out" / "table.csv",
+                {"point", "cameras", "masks", "status", "frames", "mpjpe_mm", "pa_mpjpe_mm",
+                 "pck_50mm", "pck_100mm", "pck_150mm", "rmse_mean_mm", "wrists_elbows_mm",
+                 "failed_fraction", "worst_joint", "worst_joint_mm", "report"});
   int rows = 0;
   while (csv.next()) {
     EXPECT_EQ(csv.text(3), "ok") << csv.text(3);
-    EXPECT_TRUE(fs::exists(dir / "out" / csv.text(13)));
+    EXPECT_TRUE(fs::exists(dir / "out" / csv.text(15)));
     ++rows;
   }
   EXPECT_EQ(rows, 4);
@@ -145,6 +145,9 @@ TEST(StressCli, SweepWritesOneRowPerPoint) {
   // Datasets are removed unless --keep-datasets; the two tracker settings shared one render.
   EXPECT_FALSE(fs::exists(dir / "out" / "points" / "00_3_gt" / "dataset"));
   EXPECT_NE(out.find("tiny"), std::string::npos) << out;
+  for (const char* word : {"worst joint", "frames/s", "\n  mean ", "\n  worst "}) {
+    EXPECT_NE(out.find(word), std::string::npos) << word << "\n" << out;
+  }
 }
 
 }  // namespace
