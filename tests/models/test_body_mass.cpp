@@ -10,17 +10,11 @@
 namespace simcap {
 namespace {
 
-BodyParameters body(double height) {
-  BodyParameters b;
-  b.height = height;
-  return b;
-}
-
 TEST(BodyMass, StandingCentreLiesAtAbout56PercentOfStature) {
   // Adults' standing centre of mass lies at 55-57% of their height (Winter 2009, sec. 4.1; Le
   // Veau, "Biomechanics of human motion": 55% women, 56-57% men).
   for (const double height : {1.5, 1.75, 2.0}) {
-    const Skeleton s = build_humanoid(body(height));
+    const Skeleton s = build_humanoid({.height = height, .proportions = {}});
     const Eigen::Vector3d com = BodyMass(s).center(joint_positions(s, Pose::neutral(s)));
     EXPECT_NEAR(com.y() / height, 0.56, 0.015) << height;
     EXPECT_NEAR(com.x(), 0.0, 1e-12) << height;
