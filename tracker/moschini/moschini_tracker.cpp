@@ -223,7 +223,8 @@ TrackStep MoschiniTracker::step(const Observation& obs) {
     diagnose(measured, obs, out);
     const RecoveryOptions& rec = options_.recovery;
     char why[96] = "";
-    if (out.icp.mean_distance_m > rec.lost_distance_m) {
+    if (out.icp.mean_distance_m > rec.lost_distance_m &&
+        out.outside_fraction >= rec.lost_distance_outside) {
       std::snprintf(why, sizeof why, "icp residual %.0f mm", out.icp.mean_distance_m * 1000);
     } else if (out.outside_fraction > rec.lost_outside_fraction) {
       std::snprintf(why, sizeof why, "%.0f%% of the model off the hull",

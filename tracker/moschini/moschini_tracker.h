@@ -19,6 +19,10 @@ namespace simcap::tracker {
 // filter from the best-scoring one.
 struct RecoveryOptions {
   double lost_distance_m = 0.05;
+  // A high residual alone does not mean lost: a person standing with the legs together and the
+  // arms at the sides gives one centerline down the middle, far from every stick, while the
+  // model lies wholly inside the hull; the recovery would trade that fit for merged limbs.
+  double lost_distance_outside = 0.01;
   double lost_outside_fraction = 0.25;
   int lost_frames = 3;
   // Each search makes the next wait twice as many lost frames in a row, up to this many, until a
