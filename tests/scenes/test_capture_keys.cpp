@@ -1,0 +1,180 @@
+// The scene keys of capture nuisances: each is off by default and then absent from the resolved
+// scene, round-trips exactly when on, refuses bad values naming file, line and key, and light
+// keyframes interpolate as documented.
+#include <gtest/gtest.h>
+
+#include "scenes/scene.h"
+#include "tests/scenes/scene_test_support.h"
+#include "tests/support/temp_dir.h"
+
+namespace simcap {
+namespace {
+
+using simcap::testing::load_error;
+using simcap::testing::TempDir;
+using simcap::testing::write_scene;
+
+const char* kNuisances = R"(
+lights:
+  - type: point
+    position: [0, 2.5, 0]
+    keyframes:
+      - {time: 0, intensity: 0.2}
+      - {time: 1.5, position: [1, 2.5, 0]}
+      - {time: 2, intensity: 1.1, position: [1, 2, -1]}
+  - type: directional
+    direction: [0, -1, 0]
+    keyframes: [{time: -1, direction: [0, -1, 0]}, {time: 1, direction: [1, -1, 0]}]
+rig:
+  calibration_error: {rotation_deg: 0.5, translation_m: 0.01, focal_rel: 0.02, principal_px: 1.5,
+                      seed: 7}
+  sync: {offset_ms: [0, 12.5, -3.25, 40]}
+  readout_ms: 28.5
+  auto_exposure: true
+render: {frames: 3, shutter: 0.5, samples_per_pixel: 4}
+)";
+
+TEST(CaptureKeys, OffByDefaultAndNotWritten) {
+  TempDir dir;
+  const Scene s = load_scene(write_scene(dir.path(), "render: {frames: 2}\n"));
+  EXPECT_FALSE(s.calibration_error.any());
+  EXPECT_TRUE(s.timing.synchronised());
+  EXPECT_EQ(s.timing.readout_ms, 0);
+  EXPECT_FALSE(s.timing.auto_exposure);
+  EXPECT_EQ(s.render.shutter, 0);
+  EXPECT_TRUE(s.lights.at(0).keyframes.empty());
+  const std::string text = scene_to_yaml(s);
+  for (const char* key : {"calibration_error", "sync", "readout_ms", "auto_exposure", "shutter",
+                          "keyframes"}) {
+    EXPECT_EQ(text.find(key), std::string::npos) << key;
+  }
+}
+
+TEST(CaptureKeys, RoundTripExactly) {
+  TempDir dir;
+  const Scene a = load_scene(write_scene(dir.path(), kNuisances));
+  EXPECT_EQ(a.calibration_error.rotation_deg, 0.5);
+  EXPECT_EQ(a.calibration_error.seed, 7u);
+  EXPECT_EQ(a.timing.offset_ms, (std::vector<double>{0, 12.5, -3.25, 40}));
+  EXPECT_EQ(a.timing.readout_ms, 28.5);
+  EXPECT_EQ(a.render.shutter, 0.5);
+  ASSERT_EQ(a.lights.at(0).keyframes.size(), 3u);
+  const std::string text = scene_to_yaml(a);
+  const Scene b = load_scene(write_scene(dir.path(), text, "resolved.yaml"));
+  simcap::testing::expect_scenes_equal(a, b);
+  EXPECT_EQ(scene_to_yaml(b), text);
+  EXPECT_EQ(b.calibration_error.focal_rel, a.calibration_error.focal_rel);
+  EXPECT_EQ(b.calibration_error.principal_px, a.calibration_error.principal_px);
+  EXPECT_EQ(b.calibration_error.translation_m, a.calibration_error.translation_m);
+  EXPECT_EQ(b.timing.offset_ms, a.timing.offset_ms);
+  EXPECT_EQ(b.timing.readout_ms, a.timing.readout_ms);
+  EXPECT_TRUE(b.timing.auto_exposure);
+  EXPECT_EQ(b.render.shutter, a.render.shutter);
+  for (size_t i = 0; i < a.lights.size(); ++i) {
+    ASSERT_EQ(b.lights[i].keyframes.size(), a.lights[i].keyframes.size());
+    for (size_t k = 0; k < a.lights[i].keyframes.size(); ++k) {
+      const LightKeyframe &x = a.lights[i].keyframes[k], &y = b.lights[i].keyframes[k];
+      EXPECT_EQ(x.time_s, y.time_s);
+      EXPECT_EQ(x.intensity, y.intensity);
+      EXPECT_EQ(x.position, y.position);
+      EXPECT_EQ(x.direction, y.direction);
+    }
+  }
+}
+
+TEST(CaptureKeys, SigmaOffsetsRoundTripAsSigmaAndSeed) {
+  TempDir dir;
+  const Scene a = load_scene(write_scene(
+      dir.path(), "rig: {sync: {offset_ms_sigma: 8, seed: 3}}\nrender: {frames: 2}\n"));
+  EXPECT_FALSE(a.timing.synchronised());
+  EXPECT_TRUE(a.timing.offset_ms.empty());
+  const Scene b = load_scene(write_scene(dir.path(), scene_to_yaml(a), "resolved.yaml"));
+  EXPECT_EQ(b.timing.offset_sigma_ms, 8);
+  EXPECT_EQ(b.timing.seed, 3u);
+}
+
+TEST(CaptureKeys, LightKeyframesInterpolateEachValueBetweenTheKeyframesGivingIt) {
+  TempDir dir;
+  const Scene s = load_scene(write_scene(dir.path(), kNuisances));
+  const Light& point = s.lights[0];
+  EXPECT_DOUBLE_EQ(light_at(point, -5).intensity, 0.2);  // held before the first
+  EXPECT_DOUBLE_EQ(light_at(point, 1.0).intensity, 0.2 + 0.5 * 0.9);
+  EXPECT_DOUBLE_EQ(light_at(point, 9).intensity, 1.1);  // held after the last
+  // The position is keyed at 1.5 and 2 only; before 1.5 it holds the first key, not the base.
+  EXPECT_TRUE(light_at(point, 0.5).position.isApprox(Eigen::Vector3d(1, 2.5, 0)));
+  EXPECT_TRUE(light_at(point, 1.75).position.isApprox(Eigen::Vector3d(1, 2.25, -0.5)));
+  const Light& sun = s.lights[1];
+  const Eigen::Vector3d mid =
+      0.5 * Eigen::Vector3d(0, -1, 0) + 0.5 * Eigen::Vector3d(1, -1, 0).normalized();
+  EXPECT_TRUE(light_at(sun, 0).direction.isApprox(mid.normalized()));
+  EXPECT_NEAR(light_at(sun, 0.3).direction.norm(), 1, 1e-12);
+}
+
+struct BadCase {
+  const char* yaml;
+  int line;
+  const char* key_path;
+  const char* expected;
+};
+
+class BadCaptureKey : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadCaptureKey, NamesFileLineKeyAndExpectation) {
+  const BadCase& c = GetParam();
+  TempDir dir;
+  const std::string yaml = c.yaml;
+  const auto path = write_scene(
+      dir.path(), yaml.find("render:") == 0 ? yaml : "render: {frames: 2}\n" + yaml);
+  const std::string msg = load_error(path);
+  const std::string where = path.string() + ":" + std::to_string(c.line) + ": " + c.key_path + ": ";
+  EXPECT_EQ(msg.rfind(where, 0), 0u) << "message: " << msg << "\nexpected start: " << where;
+  EXPECT_NE(msg.find(c.expected), std::string::npos) << "message: " << msg;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, BadCaptureKey,
+    ::testing::Values(
+        BadCase{"rig:\n  calibration_error: {rotation_deg: -1}\n", 3,
+                "rig.calibration_error.rotation_deg", "in [0, 180]"},
+        BadCase{"rig:\n  calibration_error: {focal_rel: 1}\n", 3,
+                "rig.calibration_error.focal_rel", "in [0, 1)"},
+        BadCase{"rig:\n  calibration_error: {shear: 1}\n", 3, "rig.calibration_error.shear",
+                "unknown key"},
+        BadCase{"rig:\n  sync: {offset_ms: [0, 1, 2]}\n", 3, "rig.sync.offset_ms",
+                "one offset per camera (4), got 3"},
+        BadCase{"rig:\n  sync: {offset_ms: [0, 1, 2, 3], offset_ms_sigma: 2}\n", 3,
+                "rig.sync.offset_ms_sigma", "one way only"},
+        BadCase{"rig:\n  sync: {seed: 2}\n", 3, "rig.sync", "offset_ms"},
+        BadCase{"rig:\n  sync: {offset_ms_sigma: -2}\n", 3, "rig.sync.offset_ms_sigma",
+                "in [0, 10000]"},
+        BadCase{"rig:\n  readout_ms: -3\n", 3, "rig.readout_ms", "in [0, 10000]"},
+        BadCase{"rig:\n  auto_exposure: sometimes\n", 3, "rig.auto_exposure", "true or false"},
+        BadCase{"render:\n  frames: 2\n  shutter: 1.5\n", 3, "render.shutter", "in [0, 1]"},
+        BadCase{"lights:\n  - type: point\n    keyframes: [{intensity: 1}]\n", 4,
+                "lights[0].keyframes[0]", "missing key 'time'"},
+        BadCase{"lights:\n  - type: point\n    keyframes:\n      - {time: 1, intensity: 1}\n"
+                "      - {time: 1, intensity: 2}\n",
+                6, "lights[0].keyframes[1].time", "must increase"},
+        BadCase{"lights:\n  - type: point\n    keyframes: [{time: 1, direction: [0, -1, 0]}]\n",
+                4, "lights[0].keyframes[0].direction", "unknown key"},
+        BadCase{"lights:\n  - type: point\n    keyframes: [{time: 1}]\n", 4,
+                "lights[0].keyframes[0]", "a value besides its time"},
+        BadCase{"lights:\n  - type: directional\n    keyframes:\n"
+                "      - {time: 0, direction: [0, -1, 0]}\n"
+                "      - {time: 1, direction: [0, 1, 0]}\n",
+                6, "lights[0].keyframes[1].direction", "opposite"}));
+
+TEST(CaptureKeys, OverridesReachTheNewKeys) {
+  TempDir dir;
+  const auto path = write_scene(dir.path(), "render: {frames: 2}\n");
+  const Scene s = load_scene(path, {"rig.readout_ms=12", "render.shutter=0.25",
+                                    "rig.sync={offset_ms_sigma: 5}"});
+  EXPECT_EQ(s.timing.readout_ms, 12);
+  EXPECT_EQ(s.render.shutter, 0.25);
+  EXPECT_EQ(s.timing.offset_sigma_ms, 5);
+  EXPECT_NE(load_error(path, {"rig.readout_ms=x"}).find("override 'rig.readout_ms=x'"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace simcap
