@@ -38,8 +38,9 @@ void read_sync(const yaml::Field& f, int camera_count, CaptureTiming& t) {
   auto seed = m.take("seed");
   if (list && (sigma || seed)) {
     (sigma ? *sigma : *seed)
-        .fail("give the offsets one way only: offset_ms (one per camera), or offset_ms_sigma "
-              "with an optional seed");
+        .fail(
+            "give the offsets one way only: offset_ms (one per camera), or offset_ms_sigma "
+            "with an optional seed");
   }
   if (list) {
     const auto items = list->items(1, 1000);
@@ -64,7 +65,8 @@ void read_sync(const yaml::Field& f, int camera_count, CaptureTiming& t) {
 void read_capture_keys(yaml::Map& rig, const std::vector<Camera>& cameras, Scene& scene) {
   if (auto v = rig.take("calibration_error")) scene.calibration_error = read_calibration_error(*v);
   if (auto v = rig.take("sync")) read_sync(*v, static_cast<int>(cameras.size()), scene.timing);
-  if (auto v = rig.take("readout_ms")) scene.timing.readout_ms = v->number(yaml::non_negative(kMaxMs));
+  if (auto v = rig.take("readout_ms"))
+    scene.timing.readout_ms = v->number(yaml::non_negative(kMaxMs));
   if (auto v = rig.take("auto_exposure")) scene.timing.auto_exposure = v->boolean();
 }
 
@@ -90,8 +92,9 @@ std::vector<LightKeyframe> read_light_keyframes(const yaml::Field& f, Light::Kin
       for (auto prev = keys.rbegin(); prev != keys.rend(); ++prev) {
         if (!prev->direction) continue;
         if (prev->direction->normalized().dot(d.normalized()) < -1 + 1e-9) {
-          v->fail("a direction opposite to the previous keyframe's cannot be interpolated; add a "
-                  "keyframe in between");
+          v->fail(
+              "a direction opposite to the previous keyframe's cannot be interpolated; add a "
+              "keyframe in between");
         }
         break;
       }
@@ -172,7 +175,8 @@ Light light_at(const Light& light, double time_s) {
   Light l = light;
   const auto& keys = light.keyframes;
   if (keys.empty()) return l;
-  if (auto v = keyed_value<double>(keys, time_s, [](const LightKeyframe& k) { return k.intensity; })) {
+  if (auto v =
+          keyed_value<double>(keys, time_s, [](const LightKeyframe& k) { return k.intensity; })) {
     l.intensity = *v;
   }
   if (auto v = keyed_value<Eigen::Vector3d>(keys, time_s,

@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "core/camera.h"
-#include "scenes/capture_settings.h"
 #include "models/body_mesh.h"
 #include "models/body_source.h"
 #include "models/humanoid.h"
 #include "models/motion_source.h"
+#include "scenes/capture_settings.h"
 
 namespace simcap {
 

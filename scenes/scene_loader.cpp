@@ -523,7 +523,15 @@ RenderSettings SceneReader::read_render(const Field& f) const {
   if (auto v = m.take("samples_per_pixel")) r.samples_per_pixel = v->integer(1, 65536);
   if (auto v = m.take("seed")) r.seed = v->unsigned64();
   if (auto v = m.take("normals")) r.normals = v->boolean();
-  if (auto v = m.take("shutter")) r.shutter = v->number(yaml::closed(0, 1));
+  if (auto v = m.take("shutter")) {
+    r.shutter = v->number(yaml::closed(0, 1));
+    // One sample per pixel cannot spread over an exposure: say so rather than render it sharp.
+    if (r.shutter > 0 && r.samples_per_pixel == 1) {
+      v->fail(
+          "motion blur needs render.samples_per_pixel > 1 (each sample is a time in the "
+          "exposure)");
+    }
+  }
   m.finish();
   return r;
 }

@@ -152,9 +152,9 @@ void AnimatedActors::skin_step(int frame, double dt_s, int step) {
     const Pose local = local_pose(*g, frame, dt_s);
     // A body worn by one actor is skinned in world coordinates; a shared one in the motion's
     // own frame, which each actor's instance transform then places.
-    const std::vector<Eigen::Isometry3d> joints =
-        g->actors.size() == 1 ? place(g->actors[0], local).joint_world
-                              : forward_kinematics(g->skeleton, local);
+    const std::vector<Eigen::Isometry3d> joints = g->actors.size() == 1
+                                                      ? place(g->actors[0], local).joint_world
+                                                      : forward_kinematics(g->skeleton, local);
     g->skinner->skin(joints, embree_->body_vertices(g->body, step));
   }
 }

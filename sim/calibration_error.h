@@ -18,7 +18,7 @@ struct CameraPerturbation {
   Eigen::Vector3d rotation_axis = Eigen::Vector3d::UnitZ();
   double rotation_deg = 0;
   Eigen::Vector3d centre_shift_m = Eigen::Vector3d::Zero();  // C_written = C_true + shift (world)
-  double focal_scale = 1;                                     // fx and fy times this
+  double focal_scale = 1;                                    // fx and fy times this
   Eigen::Vector2d principal_shift_px = Eigen::Vector2d::Zero();  // cx, cy plus this
 };
 

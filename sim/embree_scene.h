@@ -116,7 +116,7 @@ class EmbreeScene {
     RTCGeometry geometry = nullptr;
     RTCScene instanced_scene = nullptr;  // only for instanced bodies
     std::vector<float> vertices;         // shared with Embree: the time steps one after another
-    std::vector<Eigen::Vector3f> face_normals, vertex_normals;  // per step, one after another
+    std::vector<Eigen::Vector3f> face_normals, vertex_normals;   // per step, one after another
     std::vector<std::uint32_t> vertex_face_start, vertex_faces;  // vertex -> triangles (CSR)
     bool attached = false;
   };

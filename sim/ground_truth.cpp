@@ -157,7 +157,6 @@ FrameTruth compute_frame_truth(int frame, const std::vector<PosedActor>& actors,
   return t;
 }
 
-
 void compute_timed_views(FrameTruth& truth, const std::vector<int>& cameras,
                          const std::vector<CameraRays>& rays, const CaptureClock& clock,
                          const AnimatedActors& actors, const EmbreeScene& scene) {

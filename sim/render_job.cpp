@@ -218,7 +218,6 @@ Json describe_calibration_error(const std::vector<Camera>& cameras, const Calibr
   return j;
 }
 
-
 // meta.json's "capture": when each camera captured and for how long, when any of it differs
 // from every camera capturing every row at the frame's time in an instant.
 Json describe_capture(const Scene& scene, const CaptureClock& clock) {
@@ -247,8 +246,8 @@ Json describe_capture(const Scene& scene, const CaptureClock& clock) {
   return c;
 }
 
-Json describe(const Scene& scene, const fs::path& scene_file,
-              const std::vector<PosedActor>& actors, const CaptureClock& clock) {
+Json describe(const Scene& scene, const fs::path& scene_file, const std::vector<PosedActor>& actors,
+              const CaptureClock& clock) {
   Json meta;
   meta["simcap_version"] = SIMCAP_VERSION;
   meta["libraries"] = library_versions();

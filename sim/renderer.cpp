@@ -187,11 +187,12 @@ void Renderer::trace_camera_rays(const ShotState& shot, int px, int py, int samp
     // Sample s of n is jittered within the s-th of n equal parts of the exposure.
     const float part = 1.f / static_cast<float>(samples_);
     for (int k = 0; k < N; ++k) {
-      const std::uint64_t pixel = static_cast<std::uint64_t>(py + k / B) * rays.width() + px + k % B;
+      const std::uint64_t pixel =
+          static_cast<std::uint64_t>(py + k / B) * rays.width() + px + k % B;
       const float u = uniform01(random_bits(
           seed_, {kShutter, camera_key, frame_key, pixel, static_cast<std::uint64_t>(sample)}));
-      const float t = ray.time[k] + shot.times.exposure *
-                                        ((static_cast<float>(sample - 1) + u) * part - 0.5f);
+      const float t =
+          ray.time[k] + shot.times.exposure * ((static_cast<float>(sample - 1) + u) * part - 0.5f);
       ray.time[k] = std::clamp(t, 0.f, 1.f);
     }
   }

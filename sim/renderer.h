@@ -86,13 +86,13 @@ class Renderer {
   struct Tile {
     int shot, x0, y0, x1, y1;
   };
-  struct Lanes;  // one ray packet and the per-pixel state of its 4x4 block (renderer.cpp)
+  struct Lanes;      // one ray packet and the per-pixel state of its 4x4 block (renderer.cpp)
   struct ShotState;  // a shot's lights and keys while it renders
   RayCounts render_tile(const ShotState& shot, const Tile& tile, int frame, RenderedView& view,
                         bool sensor_noise, double& luminance) const;
   // The steps for one packet: camera rays for one sample, the surfaces they hit, one light.
-  void trace_camera_rays(const ShotState& shot, int px, int py, int sample,
-                         std::uint64_t frame_key, Lanes& lanes) const;
+  void trace_camera_rays(const ShotState& shot, int px, int py, int sample, std::uint64_t frame_key,
+                         Lanes& lanes) const;
   void look_up_surfaces(Lanes& lanes) const;
   int add_light(const LightSource& light, Lanes& lanes) const;  // returns shadow rays traced
   // Encodes a block's linear colour (structure of arrays) into the image rows, adds noise.

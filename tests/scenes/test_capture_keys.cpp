@@ -44,8 +44,8 @@ TEST(CaptureKeys, OffByDefaultAndNotWritten) {
   EXPECT_EQ(s.render.shutter, 0);
   EXPECT_TRUE(s.lights.at(0).keyframes.empty());
   const std::string text = scene_to_yaml(s);
-  for (const char* key : {"calibration_error", "sync", "readout_ms", "auto_exposure", "shutter",
-                          "keyframes"}) {
+  for (const char* key :
+       {"calibration_error", "sync", "readout_ms", "auto_exposure", "shutter", "keyframes"}) {
     EXPECT_EQ(text.find(key), std::string::npos) << key;
   }
 }
@@ -84,8 +84,8 @@ TEST(CaptureKeys, RoundTripExactly) {
 
 TEST(CaptureKeys, SigmaOffsetsRoundTripAsSigmaAndSeed) {
   TempDir dir;
-  const Scene a = load_scene(write_scene(
-      dir.path(), "rig: {sync: {offset_ms_sigma: 8, seed: 3}}\nrender: {frames: 2}\n"));
+  const Scene a = load_scene(
+      write_scene(dir.path(), "rig: {sync: {offset_ms_sigma: 8, seed: 3}}\nrender: {frames: 2}\n"));
   EXPECT_FALSE(a.timing.synchronised());
   EXPECT_TRUE(a.timing.offset_ms.empty());
   const Scene b = load_scene(write_scene(dir.path(), scene_to_yaml(a), "resolved.yaml"));
@@ -123,8 +123,8 @@ TEST_P(BadCaptureKey, NamesFileLineKeyAndExpectation) {
   const BadCase& c = GetParam();
   TempDir dir;
   const std::string yaml = c.yaml;
-  const auto path = write_scene(
-      dir.path(), yaml.find("render:") == 0 ? yaml : "render: {frames: 2}\n" + yaml);
+  const auto path =
+      write_scene(dir.path(), yaml.find("render:") == 0 ? yaml : "render: {frames: 2}\n" + yaml);
   const std::string msg = load_error(path);
   const std::string where = path.string() + ":" + std::to_string(c.line) + ": " + c.key_path + ": ";
   EXPECT_EQ(msg.rfind(where, 0), 0u) << "message: " << msg << "\nexpected start: " << where;
@@ -136,8 +136,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadCase{"rig:\n  calibration_error: {rotation_deg: -1}\n", 3,
                 "rig.calibration_error.rotation_deg", "in [0, 180]"},
-        BadCase{"rig:\n  calibration_error: {focal_rel: 1}\n", 3,
-                "rig.calibration_error.focal_rel", "in [0, 1)"},
+        BadCase{"rig:\n  calibration_error: {focal_rel: 1}\n", 3, "rig.calibration_error.focal_rel",
+                "in [0, 1)"},
         BadCase{"rig:\n  calibration_error: {shear: 1}\n", 3, "rig.calibration_error.shear",
                 "unknown key"},
         BadCase{"rig:\n  sync: {offset_ms: [0, 1, 2]}\n", 3, "rig.sync.offset_ms",
@@ -150,13 +150,15 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"rig:\n  readout_ms: -3\n", 3, "rig.readout_ms", "in [0, 10000]"},
         BadCase{"rig:\n  auto_exposure: sometimes\n", 3, "rig.auto_exposure", "true or false"},
         BadCase{"render:\n  frames: 2\n  shutter: 1.5\n", 3, "render.shutter", "in [0, 1]"},
+        BadCase{"render:\n  frames: 2\n  shutter: 0.5\n", 3, "render.shutter",
+                "samples_per_pixel > 1"},
         BadCase{"lights:\n  - type: point\n    keyframes: [{intensity: 1}]\n", 4,
                 "lights[0].keyframes[0]", "missing key 'time'"},
         BadCase{"lights:\n  - type: point\n    keyframes:\n      - {time: 1, intensity: 1}\n"
                 "      - {time: 1, intensity: 2}\n",
                 6, "lights[0].keyframes[1].time", "must increase"},
-        BadCase{"lights:\n  - type: point\n    keyframes: [{time: 1, direction: [0, -1, 0]}]\n",
-                4, "lights[0].keyframes[0].direction", "unknown key"},
+        BadCase{"lights:\n  - type: point\n    keyframes: [{time: 1, direction: [0, -1, 0]}]\n", 4,
+                "lights[0].keyframes[0].direction", "unknown key"},
         BadCase{"lights:\n  - type: point\n    keyframes: [{time: 1}]\n", 4,
                 "lights[0].keyframes[0]", "a value besides its time"},
         BadCase{"lights:\n  - type: directional\n    keyframes:\n"
@@ -168,7 +170,7 @@ TEST(CaptureKeys, OverridesReachTheNewKeys) {
   TempDir dir;
   const auto path = write_scene(dir.path(), "render: {frames: 2}\n");
   const Scene s = load_scene(path, {"rig.readout_ms=12", "render.shutter=0.25",
-                                    "rig.sync={offset_ms_sigma: 5}"});
+                                    "render.samples_per_pixel=2", "rig.sync={offset_ms_sigma: 5}"});
   EXPECT_EQ(s.timing.readout_ms, 12);
   EXPECT_EQ(s.render.shutter, 0.25);
   EXPECT_EQ(s.timing.offset_sigma_ms, 5);

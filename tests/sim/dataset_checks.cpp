@@ -23,7 +23,8 @@ namespace {
 
 std::vector<std::string> actor_names(const fs::path& dir) {
   std::vector<std::string> names;
-  for (const auto& n : nlohmann::json::parse(read_text(dir / "meta.json")).at("actors")) {
+  const auto meta = nlohmann::json::parse(read_text(dir / "meta.json"));
+  for (const auto& n : meta.at("actors")) {
     names.push_back(n.get<std::string>());
   }
   return names;
@@ -175,8 +176,8 @@ void check_consistency(const fs::path& dir) {
   for (const Joint2d& r : rows) {
     SCOPED_TRACE("frame " + std::to_string(r.frame) + " " + r.camera + " " + r.joint);
     const CameraCalibration& c = cams.at(r.camera);
-    const cv::Point3d X = captured.timed() ? captured.at(r, c.height)
-                                           : joints3d.at(r.frame).at(r.joint);
+    const cv::Point3d X =
+        captured.timed() ? captured.at(r, c.height) : joints3d.at(r.frame).at(r.joint);
     cv::Mat Xc = c.R * cv::Mat(X) + c.t;
     EXPECT_NEAR(r.depth, Xc.at<double>(2), 1e-6);
     if (std::isnan(r.u)) {
@@ -232,6 +233,5 @@ std::map<std::string, std::string> read_tree(const fs::path& root) {
   }
   return files;
 }
-
 
 }  // namespace simcap::testing

@@ -17,8 +17,8 @@ inline const char* const kKinds[] = {"rgb", "depth", "mask", "parts"};
 std::string scene_path(const std::string& name);
 
 // A small, fast render of a scene: kFrames frames at kWidth x kHeight; returns the exit status.
-int render(const std::string& scene, const std::filesystem::path& out, const std::string& extra = "",
-           std::string* output = nullptr);
+int render(const std::string& scene, const std::filesystem::path& out,
+           const std::string& extra = "", std::string* output = nullptr);
 
 struct CameraCalibration {
   cv::Mat K, dist, rvec, t, R;

@@ -31,10 +31,10 @@ BodyMesh sphere_mesh() {
     const double theta = std::numbers::pi * i / kRings;
     for (int j = 0; j < kSegments; ++j) {
       const double phi = 2 * std::numbers::pi * j / kSegments;
-      m.vertices.push_back((kRadius * Eigen::Vector3d(std::sin(theta) * std::cos(phi),
-                                                      std::cos(theta),
-                                                      -std::sin(theta) * std::sin(phi)))
-                               .cast<float>());
+      m.vertices.push_back(
+          (kRadius * Eigen::Vector3d(std::sin(theta) * std::cos(phi), std::cos(theta),
+                                     -std::sin(theta) * std::sin(phi)))
+              .cast<float>());
     }
   }
   m.vertices.push_back({0, static_cast<float>(-kRadius), 0});
@@ -65,8 +65,8 @@ double rim_band() {
 // moving from `start` to `end` over Embree's time [0, 1].
 struct MovingSphere {
   Scene scene;
-  Camera camera = Camera::look_at("cam", 80, 60, 60 * std::numbers::pi / 180, {0, 0, 0},
-                                  {0, 0, -1});
+  Camera camera =
+      Camera::look_at("cam", 80, 60, 60 * std::numbers::pi / 180, {0, 0, 0}, {0, 0, -1});
   BodyMesh mesh = sphere_mesh();
   EmbreeScene embree{BodyBvhUpdate::rebuild, 2};
   Eigen::Vector3d start{-0.7, 0.1, -3}, end{0.7, -0.1, -3};
@@ -180,7 +180,6 @@ TEST(MovingSphere, MotionBlurCoversEachPixelAsTheSphereDidOverTheExposure) {
       }
     }
   }
-  std::printf("err %f blurred %d tot %f %f\n", error_sum / blurred, blurred, rendered_total, analytic_total);
   EXPECT_GT(blurred, 300);  // a streak, not a disc
   EXPECT_GT(labelled, 4500);
   // 256 samples stratified over the exposure: per-pixel noise of a few percent at most.
