@@ -1,6 +1,6 @@
 // The scene keys of capture nuisances: each is off by default and then absent from the resolved
-// scene, round-trips exactly when on, refuses bad values naming file, line and key, and light
-// keyframes interpolate as documented.
+// scene, round-trips exactly when on and is reached by --set overrides; light keyframes
+// interpolate as documented. Their bad values are cases of test_scene_errors.cpp.
 #include <gtest/gtest.h>
 
 #include "scenes/scene.h"
@@ -109,62 +109,6 @@ TEST(CaptureKeys, LightKeyframesInterpolateEachValueBetweenTheKeyframesGivingIt)
   EXPECT_TRUE(light_at(sun, 0).direction.isApprox(mid.normalized()));
   EXPECT_NEAR(light_at(sun, 0.3).direction.norm(), 1, 1e-12);
 }
-
-struct BadCase {
-  const char* yaml;
-  int line;
-  const char* key_path;
-  const char* expected;
-};
-
-class BadCaptureKey : public ::testing::TestWithParam<BadCase> {};
-
-TEST_P(BadCaptureKey, NamesFileLineKeyAndExpectation) {
-  const BadCase& c = GetParam();
-  TempDir dir;
-  const std::string yaml = c.yaml;
-  const auto path =
-      write_scene(dir.path(), yaml.find("render:") == 0 ? yaml : "render: {frames: 2}\n" + yaml);
-  const std::string msg = load_error(path);
-  const std::string where = path.string() + ":" + std::to_string(c.line) + ": " + c.key_path + ": ";
-  EXPECT_EQ(msg.rfind(where, 0), 0u) << "message: " << msg << "\nexpected start: " << where;
-  EXPECT_NE(msg.find(c.expected), std::string::npos) << "message: " << msg;
-}
-
-INSTANTIATE_TEST_SUITE_P(
-    Cases, BadCaptureKey,
-    ::testing::Values(
-        BadCase{"rig:\n  calibration_error: {rotation_deg: -1}\n", 3,
-                "rig.calibration_error.rotation_deg", "in [0, 180]"},
-        BadCase{"rig:\n  calibration_error: {focal_rel: 1}\n", 3, "rig.calibration_error.focal_rel",
-                "in [0, 1)"},
-        BadCase{"rig:\n  calibration_error: {shear: 1}\n", 3, "rig.calibration_error.shear",
-                "unknown key"},
-        BadCase{"rig:\n  sync: {offset_ms: [0, 1, 2]}\n", 3, "rig.sync.offset_ms",
-                "one offset per camera (4), got 3"},
-        BadCase{"rig:\n  sync: {offset_ms: [0, 1, 2, 3], offset_ms_sigma: 2}\n", 3,
-                "rig.sync.offset_ms_sigma", "one way only"},
-        BadCase{"rig:\n  sync: {seed: 2}\n", 3, "rig.sync", "offset_ms"},
-        BadCase{"rig:\n  sync: {offset_ms_sigma: -2}\n", 3, "rig.sync.offset_ms_sigma",
-                "in [0, 10000]"},
-        BadCase{"rig:\n  readout_ms: -3\n", 3, "rig.readout_ms", "in [0, 10000]"},
-        BadCase{"rig:\n  auto_exposure: sometimes\n", 3, "rig.auto_exposure", "true or false"},
-        BadCase{"render:\n  frames: 2\n  shutter: 1.5\n", 3, "render.shutter", "in [0, 1]"},
-        BadCase{"render:\n  frames: 2\n  shutter: 0.5\n", 3, "render.shutter",
-                "samples_per_pixel > 1"},
-        BadCase{"lights:\n  - type: point\n    keyframes: [{intensity: 1}]\n", 4,
-                "lights[0].keyframes[0]", "missing key 'time'"},
-        BadCase{"lights:\n  - type: point\n    keyframes:\n      - {time: 1, intensity: 1}\n"
-                "      - {time: 1, intensity: 2}\n",
-                6, "lights[0].keyframes[1].time", "must increase"},
-        BadCase{"lights:\n  - type: point\n    keyframes: [{time: 1, direction: [0, -1, 0]}]\n", 4,
-                "lights[0].keyframes[0].direction", "unknown key"},
-        BadCase{"lights:\n  - type: point\n    keyframes: [{time: 1}]\n", 4,
-                "lights[0].keyframes[0]", "a value besides its time"},
-        BadCase{"lights:\n  - type: directional\n    keyframes:\n"
-                "      - {time: 0, direction: [0, -1, 0]}\n"
-                "      - {time: 1, direction: [0, 1, 0]}\n",
-                6, "lights[0].keyframes[1].direction", "opposite"}));
 
 TEST(CaptureKeys, OverridesReachTheNewKeys) {
   TempDir dir;
