@@ -16,6 +16,7 @@
 #include "models/body_source.h"
 #include "models/humanoid.h"
 #include "models/motion_source.h"
+#include "scenes/capture_settings.h"
 
 namespace simcap {
 
@@ -49,6 +50,7 @@ struct Light {
   Eigen::Vector3d position{0.0, 2.8, 0.0};      // point
   double intensity = 0.8;
   bool shadows = true;
+  std::vector<LightKeyframe> keyframes;  // in time order; empty: the light never changes
 };
 
 struct Actor {
@@ -73,6 +75,7 @@ struct RenderSettings {
   int samples_per_pixel = 1;
   std::uint64_t seed = 1;
   bool normals = false;  // also write camNN/normal/%06d.exr
+  double shutter = 0;    // exposure time as a fraction of the frame period (motion blur)
 };
 
 struct SensorNoise {
@@ -87,6 +90,8 @@ struct Scene {
   std::vector<Light> lights;
   double ambient = 0.3;
   std::vector<Camera> cameras;  // the rig, resolved to explicit cameras
+  CalibrationError calibration_error;
+  CaptureTiming timing;
   std::vector<Actor> actors;
   RenderSettings render;
   SensorNoise noise;
@@ -105,6 +110,9 @@ std::string scene_to_yaml(const Scene& scene);
 // own frame) is rotated by yaw_rad about the world +Y axis through the origin, then moved by
 // offset: world = placement * motion point.
 Eigen::Isometry3d actor_placement(const Actor& actor);
+
+// The light as it is at scene time `time_s`, its keyframes applied.
+Light light_at(const Light& light, double time_s);
 
 // A scene shipped in simcap's scenes/ folder, by name: "studio4" (the default), "studio8",
 // "occluders", "monocular". Throws Error listing the shipped scenes when there is no such one.

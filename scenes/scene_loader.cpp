@@ -16,6 +16,7 @@
 #include "models/procedural_actions.h"
 #include "models/shipped_assets.h"
 #include "models/urdf_io.h"
+#include "scenes/capture_keys.h"
 #include "scenes/scene.h"
 #include "scenes/scene_names.h"
 #include "scenes/yaml_field.h"
@@ -79,7 +80,8 @@ class SceneReader {
   Room read_room(const Field& f) const;
   Occluder read_occluder(const Field& f, int index) const;
   Light read_light(const Field& f) const;
-  std::vector<Camera> read_rig(const Field& f, const Room& room) const;
+  // The cameras, and the rig's capture keys into `scene`.
+  std::vector<Camera> read_rig(const Field& f, Scene& scene) const;
   Actor read_actor(const Field& f, int index) const;
   void read_body_file(const Field& f, BodySource& body) const;
   MotionSource read_motion(const Field& f) const;
@@ -153,6 +155,7 @@ Light SceneReader::read_light(const Field& f) const {
   }
   if (auto v = m.take("intensity")) light.intensity = v->number(yaml::non_negative(1000));
   if (auto v = m.take("shadows")) light.shadows = v->boolean();
+  if (auto v = m.take("keyframes")) light.keyframes = read_light_keyframes(*v, light.kind);
   m.finish();
   return light;
 }
@@ -281,7 +284,8 @@ Camera read_explicit_camera(const Field& f, int index, const Intrinsics& rig_int
   return cam;
 }
 
-std::vector<Camera> SceneReader::read_rig(const Field& f, const Room& room) const {
+std::vector<Camera> SceneReader::read_rig(const Field& f, Scene& scene) const {
+  const Room& room = scene.room;
   Map m(f);
   enum RigType { corners, ring, explicit_list };
   static constexpr std::array<std::string_view, 3> kTypes = {"corners", "ring", "explicit"};
@@ -333,6 +337,7 @@ std::vector<Camera> SceneReader::read_rig(const Field& f, const Room& room) cons
       check_inside_room(culprit ? *culprit : f, cam, room);
     }
   }
+  read_capture_keys(m, cams, scene);
   m.finish();
   return cams;
 }
@@ -518,6 +523,15 @@ RenderSettings SceneReader::read_render(const Field& f) const {
   if (auto v = m.take("samples_per_pixel")) r.samples_per_pixel = v->integer(1, 65536);
   if (auto v = m.take("seed")) r.seed = v->unsigned64();
   if (auto v = m.take("normals")) r.normals = v->boolean();
+  if (auto v = m.take("shutter")) {
+    r.shutter = v->number(yaml::closed(0, 1));
+    // One sample per pixel cannot spread over an exposure: say so rather than render it sharp.
+    if (r.shutter > 0 && r.samples_per_pixel == 1) {
+      v->fail(
+          "motion blur needs render.samples_per_pixel > 1 (each sample is a time in the "
+          "exposure)");
+    }
+  }
   m.finish();
   return r;
 }
@@ -568,7 +582,7 @@ Scene SceneReader::read(const Field& top) {
     scene.lights.push_back(light);
   }
   if (auto v = m.take("ambient")) scene.ambient = v->number(yaml::closed(0, 1));
-  scene.cameras = read_rig(section(m, "rig"), scene.room);
+  scene.cameras = read_rig(section(m, "rig"), scene);
   if (auto v = m.take("actors")) {
     const auto items = v->items(0, 64);
     for (std::size_t i = 0; i < items.size(); ++i) {

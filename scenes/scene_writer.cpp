@@ -3,6 +3,7 @@
 #include <numbers>
 
 #include "models/shipped_assets.h"
+#include "scenes/capture_keys.h"
 #include "scenes/scene.h"
 #include "scenes/scene_names.h"
 #include "scenes/yaml_field.h"
@@ -88,6 +89,7 @@ void write_light(YAML::Emitter& out, const Light& light) {
   }
   number(out, "intensity", light.intensity);
   out << YAML::Key << "shadows" << YAML::Value << light.shadows;
+  write_light_keyframes(out, light);
   out << YAML::EndMap;
 }
 
@@ -224,6 +226,7 @@ std::string scene_to_yaml(const Scene& scene) {
   out << YAML::Key << "rig" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "type" << YAML::Value << "explicit";
   list(out, "cameras", scene.cameras, write_camera);
+  write_capture_keys(out, scene);
   out << YAML::EndMap;
   list(out, "actors", scene.actors, write_actor);
 
@@ -240,6 +243,7 @@ std::string scene_to_yaml(const Scene& scene) {
   out << YAML::Key << "samples_per_pixel" << YAML::Value << r.samples_per_pixel;
   out << YAML::Key << "seed" << YAML::Value << std::to_string(r.seed);
   out << YAML::Key << "normals" << YAML::Value << r.normals;
+  if (r.shutter > 0) number(out, "shutter", r.shutter);
   out << YAML::EndMap;
 
   out << YAML::Key << "noise" << YAML::Value << YAML::BeginMap;

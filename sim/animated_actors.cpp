@@ -100,28 +100,87 @@ void AnimatedActors::attach(EmbreeScene& embree) {
   pose(0);
 }
 
-void AnimatedActors::pose(int frame) {
+Pose AnimatedActors::local_pose(const Group& g, int frame, double dt_s) const {
+  const long last = static_cast<long>(g.motion.frames.size()) - 1;
+  const long k = first_frame_ + frame - g.start_frame;
+  if (dt_s == 0) return g.motion.frames[std::clamp<long>(k, 0, last)];
+  const double position = static_cast<double>(k) + dt_s * fps_;
+  if (position <= 0) return g.motion.frames.front();
+  if (position >= static_cast<double>(last)) return g.motion.frames.back();
+  const long i0 = static_cast<long>(std::floor(position));
+  const double a = position - static_cast<double>(i0);
+  const Pose& p0 = g.motion.frames[i0];
+  if (a == 0) return p0;
+  const Pose& p1 = g.motion.frames[i0 + 1];
+  Pose p;
+  p.root_position = (1 - a) * p0.root_position + a * p1.root_position;
+  p.rotations.resize(p0.rotations.size());
+  for (size_t j = 0; j < p0.rotations.size(); ++j) {
+    p.rotations[j] = p0.rotations[j].slerp(a, p1.rotations[j]).normalized();
+  }
+  return p;
+}
+
+PosedActor AnimatedActors::place(int actor, const Pose& local) const {
+  PosedActor p;
+  p.name = posed_[actor].name;
+  p.skeleton = posed_[actor].skeleton;
+  p.coco17 = posed_[actor].coco17;
+  p.h36m17 = posed_[actor].h36m17;
+  p.pose = local;
+  p.pose.root_position = placement_[actor] * local.root_position;
+  p.pose.rotations[0] = Eigen::Quaterniond(placement_[actor].linear()) * local.rotations[0];
+  p.joint_world = forward_kinematics(*p.skeleton, p.pose);
+  return p;
+}
+
+std::vector<PosedActor> AnimatedActors::posed_at(int frame, double dt_s) const {
+  std::vector<PosedActor> out(posed_.size());
+  for (const auto& g : groups_) {
+    const Pose local = local_pose(*g, frame, dt_s);
+    for (const int a : g->actors) out[a] = place(a, local);
+  }
+  return out;
+}
+
+PosedActor AnimatedActors::posed_actor_at(int actor, int frame, double dt_s) const {
+  return place(actor, local_pose(*groups_[group_of_.at(actor)], frame, dt_s));
+}
+
+void AnimatedActors::skin_step(int frame, double dt_s, int step) {
   for (auto& g : groups_) {
-    const long k = std::clamp<long>(first_frame_ + frame - g->start_frame, 0,
-                                    static_cast<long>(g->motion.frames.size()) - 1);
-    const Pose& local = g->motion.frames[k];
-    for (const int a : g->actors) {
-      PosedActor& p = posed_[a];
-      p.pose = local;
-      p.pose.root_position = placement_[a] * local.root_position;
-      p.pose.rotations[0] = Eigen::Quaterniond(placement_[a].linear()) * local.rotations[0];
-      p.joint_world = forward_kinematics(g->skeleton, p.pose);
-    }
-    if (!embree_) continue;
+    const Pose local = local_pose(*g, frame, dt_s);
     // A body worn by one actor is skinned in world coordinates; a shared one in the motion's
     // own frame, which each actor's instance transform then places.
-    if (g->actors.size() == 1) {
-      g->skinner->skin(posed_[g->actors[0]].joint_world, embree_->body_vertices(g->body));
-    } else {
-      g->skinner->skin(forward_kinematics(g->skeleton, local), embree_->body_vertices(g->body));
+    const std::vector<Eigen::Isometry3d> joints = g->actors.size() == 1
+                                                      ? place(g->actors[0], local).joint_world
+                                                      : forward_kinematics(g->skeleton, local);
+    g->skinner->skin(joints, embree_->body_vertices(g->body, step));
+  }
+}
+
+void AnimatedActors::pose(int frame, bool move_bodies) {
+  for (auto& g : groups_) {
+    const Pose local = local_pose(*g, frame, 0);
+    for (const int a : g->actors) posed_[a] = place(a, local);
+    if (!embree_ || !move_bodies) continue;
+    const std::vector<Eigen::Isometry3d> joints = g->actors.size() == 1
+                                                      ? posed_[g->actors[0]].joint_world
+                                                      : forward_kinematics(g->skeleton, local);
+    for (int step = 0; step < embree_->time_steps(); ++step) {
+      g->skinner->skin(joints, embree_->body_vertices(g->body, step));
     }
     embree_->body_updated(g->body);
   }
+}
+
+void AnimatedActors::pose_bodies_over(int frame, double begin_s, double end_s) {
+  const int steps = embree_->time_steps();
+  for (int step = 0; step < steps; ++step) {
+    const double a = steps > 1 ? static_cast<double>(step) / (steps - 1) : 0.0;
+    skin_step(frame, begin_s + a * (end_s - begin_s), step);
+  }
+  for (auto& g : groups_) embree_->body_updated(g->body);
 }
 
 }  // namespace simcap

@@ -39,16 +39,29 @@ class AnimatedActors {
   int frames_available() const { return frames_available_; }
   // Adds the bodies and the actors (in scene order) to `embree` and poses them at frame 0.
   void attach(EmbreeScene& embree);
-  // Poses every actor at dataset frame `frame` and updates their bodies in the attached scene;
-  // the caller commits it. Before its motion starts an actor holds the first pose, after it
-  // ends the last one.
-  void pose(int frame);
+  // Poses every actor at dataset frame `frame` and, with `move_bodies`, updates their bodies in
+  // the attached scene (every time step in that pose); the caller commits it. Before its motion
+  // starts an actor holds the first pose, after it ends the last one.
+  void pose(int frame, bool move_bodies = true);
+  // The actors `dt_s` seconds after frame `frame`'s nominal time, between two frames of their
+  // motions interpolated as the motions are resampled (slerp of joint rotations, linear root).
+  // posed() is not changed.
+  std::vector<PosedActor> posed_at(int frame, double dt_s) const;
+  PosedActor posed_actor_at(int actor, int frame, double dt_s) const;
+  // Moves the bodies in the attached scene over [begin_s, end_s] after frame `frame`'s nominal
+  // time: time step s of the scene's n holds the pose at begin_s + (end_s - begin_s) s / (n - 1).
+  // posed() is not changed; the caller commits.
+  void pose_bodies_over(int frame, double begin_s, double end_s);
   const std::vector<PosedActor>& posed() const { return posed_; }
   // Number of distinct skinned bodies (fewer than actors when actors share one).
   int body_count() const { return static_cast<int>(groups_.size()); }
 
  private:
   struct Group;
+  Pose local_pose(const Group& g, int frame, double dt_s) const;
+  PosedActor place(int actor, const Pose& local) const;
+  // Skins every body at (frame, dt_s) into time step `step`.
+  void skin_step(int frame, double dt_s, int step);
   std::vector<std::unique_ptr<Group>> groups_;
   std::vector<int> group_of_;                 // per actor
   std::vector<Eigen::Isometry3d> placement_;  // per actor: yaw about +Y, then offset

@@ -13,6 +13,7 @@
 #include "core/image_io.h"
 #include "core/joint_track.h"
 #include "core/toml_calibration.h"
+#include "sim/calibration_error.h"
 
 namespace simcap {
 namespace fs = std::filesystem;
@@ -72,16 +73,21 @@ bool DatasetWriter::backgrounds_complete() const {
 
 void DatasetWriter::write_fixed_files(const Scene& scene, const Skeleton& skeleton) const {
   write_text_atomic(root_ / "scene.yaml", scene_to_yaml(scene));
-  write_opencv_calibration(root_ / "calibration" / "opencv.yaml", scene.cameras);
+  const std::vector<Camera> calibration =
+      written_calibration(scene.cameras, scene.calibration_error);
+  write_opencv_calibration(root_ / "calibration" / "opencv.yaml", calibration);
   write_easymocap_calibration(root_ / "calibration" / "intri.yml",
-                              root_ / "calibration" / "extri.yml", scene.cameras);
-  write_toml_calibration(root_ / "calibration" / "calibration.toml", scene.cameras);
+                              root_ / "calibration" / "extri.yml", calibration);
+  write_toml_calibration(root_ / "calibration" / "calibration.toml", calibration);
   std::vector<std::string> first_images;
   for (const std::string& name : cameras_) {
     first_images.push_back(name + "/rgb/" + frame_file(0, "rgb"));
   }
-  write_colmap_model(root_ / "calibration" / "colmap", scene.cameras, first_images);
-  write_blender_cameras(root_ / "calibration" / "blender_cameras.py", scene.cameras);
+  write_colmap_model(root_ / "calibration" / "colmap", calibration, first_images);
+  write_blender_cameras(root_ / "calibration" / "blender_cameras.py", calibration);
+  if (scene.calibration_error.any()) {
+    write_opencv_calibration(root_ / "gt" / "calibration.yaml", scene.cameras);
+  }
   nlohmann::ordered_json parts;
   parts["description"] =
       "Pixel values of camNN/parts/*.png: 0 = background (no body), otherwise 1 + the skeleton "

@@ -36,7 +36,8 @@ class DatasetWriter {
   // scene.yaml (scene_to_yaml), calibration/opencv.yaml, calibration/intri.yml + extri.yml
   // (EasyMocap), calibration/calibration.toml (Anipose, Pose2Sim), calibration/colmap/ (COLMAP
   // text model; image names are frame 0's RGB files), calibration/blender_cameras.py and
-  // parts.json (the part labels of `skeleton`).
+  // parts.json (the part labels of `skeleton`). With rig.calibration_error every calibration/
+  // file states the perturbed cameras and gt/calibration.yaml the true ones.
   void write_fixed_files(const Scene& scene, const Skeleton& skeleton) const;
   void write_backgrounds(const std::vector<RenderedView>& views) const;
   void write_frame(int frame, const std::vector<RenderedView>& views) const;

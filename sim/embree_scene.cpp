@@ -38,7 +38,12 @@ EmbreeScene::Entry EmbreeScene::actor_entry(int actor) {
   return e;
 }
 
-EmbreeScene::EmbreeScene(BodyBvhUpdate body_update) : body_update_(body_update) {
+EmbreeScene::EmbreeScene(BodyBvhUpdate body_update, int time_steps)
+    : body_update_(body_update), time_steps_(time_steps) {
+  if (time_steps < 1 || time_steps > RTC_MAX_TIME_STEP_COUNT) {
+    throw Error("Embree: time steps must be in [1, " + std::to_string(RTC_MAX_TIME_STEP_COUNT) +
+                "], got " + std::to_string(time_steps));
+  }
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw Error("Embree: cannot create a device");
   scene_ = rtcNewScene(device_);
@@ -107,12 +112,15 @@ int EmbreeScene::add_body(const BodyMesh& mesh, bool instanced) {
   auto body = std::make_unique<Body>();
   body->mesh = &mesh;
   const size_t nv = mesh.vertices.size(), nt = mesh.triangles.size();
-  body->vertices.assign(3 * nv + 1, 0.f);
-  for (size_t i = 0; i < nv; ++i) {
-    for (int k = 0; k < 3; ++k) body->vertices[3 * i + k] = mesh.vertices[i][k];
+  const size_t steps = static_cast<size_t>(time_steps_);
+  body->vertices.assign(steps * 3 * nv + 1, 0.f);
+  for (size_t s = 0; s < steps; ++s) {
+    for (size_t i = 0; i < nv; ++i) {
+      for (int k = 0; k < 3; ++k) body->vertices[(s * nv + i) * 3 + k] = mesh.vertices[i][k];
+    }
   }
-  body->face_normals.resize(nt);
-  body->vertex_normals.resize(nv);
+  body->face_normals.resize(steps * nt);
+  body->vertex_normals.resize(steps * nv);
   body->vertex_face_start.assign(nv + 1, 0);
   for (const auto& t : mesh.triangles) {
     for (const auto v : t) ++body->vertex_face_start[v + 1];
@@ -127,8 +135,12 @@ int EmbreeScene::add_body(const BodyMesh& mesh, bool instanced) {
   }
 
   RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-  rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, body->vertices.data(),
-                             0, 3 * sizeof(float), nv);
+  if (steps > 1) rtcSetGeometryTimeStepCount(g, time_steps_);
+  for (size_t s = 0; s < steps; ++s) {
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(s),
+                               RTC_FORMAT_FLOAT3, body->vertices.data(), s * 3 * nv * sizeof(float),
+                               3 * sizeof(float), nv);
+  }
   auto* t = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
       g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), nt));
   if (!t) {
@@ -177,36 +189,42 @@ int EmbreeScene::add_actor(int body_index, const std::array<Rgb, kMaterialRegion
   return index;
 }
 
-float* EmbreeScene::body_vertices(int body) {
-  return bodies_.at(body)->vertices.data();
+float* EmbreeScene::body_vertices(int body, int step) {
+  if (step < 0 || step >= time_steps_) throw Error("Embree: no time step " + std::to_string(step));
+  Body& b = *bodies_.at(body);
+  return b.vertices.data() + static_cast<size_t>(step) * 3 * b.mesh->vertices.size();
 }
 
 void EmbreeScene::body_updated(int body_index) {
   Body& b = *bodies_.at(body_index);
   const auto& tris = b.mesh->triangles;
-  const float* v = b.vertices.data();
-  auto vertex = [v](std::uint32_t i) {
-    return Eigen::Vector3f(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
-  };
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, tris.size(), 4096), [&](const auto& r) {
-    for (size_t f = r.begin(); f != r.end(); ++f) {
-      const Eigen::Vector3f a = vertex(tris[f][0]);
-      b.face_normals[f] = (vertex(tris[f][1]) - a).cross(vertex(tris[f][2]) - a);
-    }
-  });
-  // Area-weighted vertex normals: summing unnormalised face normals weights each by its area.
-  tbb::parallel_for(
-      tbb::blocked_range<size_t>(0, b.vertex_normals.size(), 4096), [&](const auto& r) {
-        for (size_t i = r.begin(); i != r.end(); ++i) {
-          Eigen::Vector3f n = Eigen::Vector3f::Zero();
-          for (auto k = b.vertex_face_start[i]; k < b.vertex_face_start[i + 1]; ++k) {
-            n += b.face_normals[b.vertex_faces[k]];
-          }
-          const float len = n.norm();
-          b.vertex_normals[i] = len > 0 ? Eigen::Vector3f(n / len) : Eigen::Vector3f::UnitY();
+  const size_t nv = b.mesh->vertices.size(), nt = tris.size();
+  for (size_t step = 0; step < static_cast<size_t>(time_steps_); ++step) {
+    const float* v = b.vertices.data() + step * 3 * nv;
+    Eigen::Vector3f* face_normals = b.face_normals.data() + step * nt;
+    Eigen::Vector3f* vertex_normals = b.vertex_normals.data() + step * nv;
+    auto vertex = [v](std::uint32_t i) {
+      return Eigen::Vector3f(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+    };
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, 4096), [&](const auto& r) {
+      for (size_t f = r.begin(); f != r.end(); ++f) {
+        const Eigen::Vector3f a = vertex(tris[f][0]);
+        face_normals[f] = (vertex(tris[f][1]) - a).cross(vertex(tris[f][2]) - a);
+      }
+    });
+    // Area-weighted vertex normals: summing unnormalised face normals weights each by its area.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, nv, 4096), [&](const auto& r) {
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        Eigen::Vector3f n = Eigen::Vector3f::Zero();
+        for (auto k = b.vertex_face_start[i]; k < b.vertex_face_start[i + 1]; ++k) {
+          n += face_normals[b.vertex_faces[k]];
         }
-      });
-  rtcUpdateGeometryBuffer(b.geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+        const float len = n.norm();
+        vertex_normals[i] = len > 0 ? Eigen::Vector3f(n / len) : Eigen::Vector3f::UnitY();
+      }
+    });
+    rtcUpdateGeometryBuffer(b.geometry, RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(step));
+  }
   rtcCommitGeometry(b.geometry);
   if (b.instanced_scene) rtcCommitScene(b.instanced_scene);
 }

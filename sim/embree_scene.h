@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <vector>
@@ -30,6 +31,7 @@ struct HitRecord {
   unsigned prim_id = 0;
   float u = 0, v = 0;
   Eigen::Vector3f ng = Eigen::Vector3f::Zero();  // unnormalised, in the hit object's frame
+  float time = 0;                                // the ray's time (moving bodies)
 };
 
 // The surface at a hit, ready for shading and labelling.
@@ -58,7 +60,9 @@ inline constexpr unsigned kShadowCasterMask = 2u;
 
 class EmbreeScene {
  public:
-  explicit EmbreeScene(BodyBvhUpdate body_update = BodyBvhUpdate::refit);
+  // Bodies get `time_steps` vertex buffers (Embree motion blur: a ray at time t in [0, 1] sees
+  // the body interpolated linearly between the steps around t); 1 keeps them still.
+  explicit EmbreeScene(BodyBvhUpdate body_update = BodyBvhUpdate::refit, int time_steps = 1);
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -74,9 +78,10 @@ class EmbreeScene {
   // Actors are numbered in the order they are added.
   int add_actor(int body, const std::array<Rgb, kMaterialRegionCount>& colors);
 
-  // The body's vertex buffer (3 * vertex count + 1 floats) for Skinner::skin to write into;
-  // call body_updated() afterwards.
-  float* body_vertices(int body);
+  // The body's vertex buffer of time step `step` (3 * vertex count + 1 floats) for
+  // Skinner::skin to write into; call body_updated() after writing every step.
+  float* body_vertices(int body, int step = 0);
+  int time_steps() const { return time_steps_; }
   void body_updated(int body);
   void set_actor_transform(int actor, const Eigen::Isometry3d& object_to_world);
   // Hides or shows every actor (the empty-room background plates hide them).
@@ -110,8 +115,8 @@ class EmbreeScene {
     const BodyMesh* mesh = nullptr;
     RTCGeometry geometry = nullptr;
     RTCScene instanced_scene = nullptr;  // only for instanced bodies
-    std::vector<float> vertices;         // shared with Embree
-    std::vector<Eigen::Vector3f> face_normals, vertex_normals;
+    std::vector<float> vertices;         // shared with Embree: the time steps one after another
+    std::vector<Eigen::Vector3f> face_normals, vertex_normals;   // per step, one after another
     std::vector<std::uint32_t> vertex_face_start, vertex_faces;  // vertex -> triangles (CSR)
     bool attached = false;
   };
@@ -139,6 +144,7 @@ class EmbreeScene {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   BodyBvhUpdate body_update_;
+  int time_steps_ = 1;
   std::vector<std::unique_ptr<StaticGeometry>> statics_;  // stable addresses for entries_
   std::vector<std::unique_ptr<Body>> bodies_;
   std::vector<Actor> actors_;
@@ -156,9 +162,20 @@ inline SurfacePoint EmbreeScene::surface(const HitRecord& hit, const Eigen::Vect
     const auto& tri = b.mesh->triangles[hit.prim_id];
     s.actor = e.actor;
     s.albedo = a.albedo[static_cast<int>(b.mesh->triangle_material[hit.prim_id])];
-    s.normal = (a.rotation * (w0 * b.vertex_normals[tri[0]] + hit.u * b.vertex_normals[tri[1]] +
-                              hit.v * b.vertex_normals[tri[2]]))
-                   .normalized();
+    const Eigen::Vector3f* vn = b.vertex_normals.data();
+    Eigen::Vector3f n = w0 * vn[tri[0]] + hit.u * vn[tri[1]] + hit.v * vn[tri[2]];
+    if (time_steps_ > 1) {
+      // Normals are kept per time step: blend the two steps around the ray's time.
+      const float step = hit.time * static_cast<float>(time_steps_ - 1);
+      const int i = std::clamp(static_cast<int>(step), 0, time_steps_ - 2);
+      const float a = step - static_cast<float>(i);
+      const size_t nv = b.mesh->vertices.size();
+      const Eigen::Vector3f* v0 = vn + i * nv;
+      const Eigen::Vector3f* v1 = v0 + nv;
+      n = (1 - a) * (w0 * v0[tri[0]] + hit.u * v0[tri[1]] + hit.v * v0[tri[2]]) +
+          a * (w0 * v1[tri[0]] + hit.u * v1[tri[1]] + hit.v * v1[tri[2]]);
+    }
+    s.normal = (a.rotation * n).normalized();
     s.geometric_normal = (a.rotation * hit.ng).normalized();
     // The part is the segment of the triangle's vertex nearest to the hit.
     const std::uint32_t nearest =

@@ -8,7 +8,7 @@ namespace simcap {
 namespace {
 
 Visibility classify(const CameraRays& rays, const EmbreeScene& scene, int actor,
-                    const Eigen::Vector2d& pixel, double depth) {
+                    const Eigen::Vector2d& pixel, double depth, const RayTimes& times = {}) {
   const double w = rays.width(), h = rays.height();
   if (!(depth > 0) ||
       !(pixel.x() >= -0.5 && pixel.x() < w - 0.5 && pixel.y() >= -0.5 && pixel.y() < h - 0.5)) {
@@ -26,6 +26,7 @@ Visibility classify(const CameraRays& rays, const EmbreeScene& scene, int actor,
   rh.ray.dir_z = d.z();
   rh.ray.tnear = 0.f;
   rh.ray.tfar = std::numeric_limits<float>::infinity();
+  rh.ray.time = times.at_row(y);
   rh.ray.mask = ~0u;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -51,6 +52,44 @@ JointView view_of(const CameraRays& rays, const EmbreeScene& scene, int actor,
   v.pixel = c.z() > 0 ? cam.project_camera(c)
                       : Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
   v.visibility = classify(rays, scene, actor, v.pixel, v.depth);
+  return v;
+}
+
+// Where a point of `actor` (`point` of its posed self) was when camera `camera` captured it: the
+// capture time solves dt = clock.row_offset_s(camera, v(dt)). The map is a contraction unless
+// the point crosses the image faster than the readout sweeps it; bisection on [offset, offset +
+// readout], where dt - row_offset_s(v(dt)) changes sign, settles any case the iteration does not.
+template <typename Point>
+JointView timed_view(const CameraRays& rays, int camera, const CaptureClock& clock,
+                     const AnimatedActors& actors, int frame, int actor, const Point& point,
+                     const EmbreeScene& scene) {
+  const Camera& cam = rays.camera();
+  auto residual = [&](double dt, Eigen::Vector3d& c) {
+    c = cam.to_camera(point(actors.posed_actor_at(actor, frame, dt)));
+    const double v = c.z() > 0 ? cam.project_camera(c).y() : 0.0;
+    return clock.row_offset_s(camera, v) - dt;
+  };
+  double dt = clock.offset_s(camera);
+  Eigen::Vector3d c;
+  double r = residual(dt, c);
+  for (int i = 0; i < 20 && std::abs(r) > 1e-13; ++i) {
+    dt += r;
+    r = residual(dt, c);
+  }
+  if (std::abs(r) > 1e-13) {
+    double lo = clock.offset_s(camera), hi = lo + clock.readout_s();
+    for (int i = 0; i < 100 && hi - lo > 1e-14; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (residual(mid, c) > 0 ? lo : hi) = mid;
+    }
+    dt = 0.5 * (lo + hi);
+    residual(dt, c);
+  }
+  JointView v;
+  v.depth = c.z();
+  v.pixel = c.z() > 0 ? cam.project_camera(c)
+                      : Eigen::Vector2d::Constant(std::numeric_limits<double>::quiet_NaN());
+  v.visibility = classify(rays, scene, actor, v.pixel, v.depth, clock.ray_times(camera));
   return v;
 }
 
@@ -116,6 +155,36 @@ FrameTruth compute_frame_truth(int frame, const std::vector<PosedActor>& actors,
     }
   }
   return t;
+}
+
+void compute_timed_views(FrameTruth& truth, const std::vector<int>& cameras,
+                         const std::vector<CameraRays>& rays, const CaptureClock& clock,
+                         const AnimatedActors& actors, const EmbreeScene& scene) {
+  truth.views.resize(rays.size());
+  truth.coco_views.resize(rays.size());
+  const auto& posed = actors.posed();
+  for (const int c : cameras) {
+    auto& per_actor = truth.views[c];
+    auto& coco_per_actor = truth.coco_views[c];
+    per_actor.clear();
+    coco_per_actor.clear();
+    for (size_t a = 0; a < posed.size(); ++a) {
+      const int actor = static_cast<int>(a);
+      auto& joints = per_actor.emplace_back();
+      for (const int j : truth_joints(*posed[a].skeleton)) {
+        joints.push_back(timed_view(
+            rays[c], c, clock, actors, truth.frame, actor,
+            [j](const PosedActor& p) { return p.joint_world[j].translation(); }, scene));
+      }
+      auto& coco = coco_per_actor.emplace_back();
+      if (!posed[a].coco17) continue;
+      for (const BodyPoint& k : *posed[a].coco17) {
+        coco.push_back(timed_view(
+            rays[c], c, clock, actors, truth.frame, actor,
+            [&k](const PosedActor& p) { return body_point_world(k, p.joint_world); }, scene));
+      }
+    }
+  }
 }
 
 }  // namespace simcap

@@ -10,6 +10,7 @@
 
 #include "sim/animated_actors.h"
 #include "sim/camera_rays.h"
+#include "sim/capture_clock.h"
 #include "sim/embree_scene.h"
 
 namespace simcap {
@@ -58,5 +59,14 @@ std::vector<int> truth_joints(const Skeleton& skeleton);
 // [-0.5, width - 0.5) x [-0.5, height - 0.5) are out_of_frame.
 FrameTruth compute_frame_truth(int frame, const std::vector<PosedActor>& actors,
                                const std::vector<CameraRays>& cameras, const EmbreeScene& scene);
+
+// The views of `cameras` (indices into `rays`) when they capture as `clock` says, the scene
+// holding their group's moving bodies: each joint is projected where it was when the row it
+// lands on was captured, the fixed point t = row_offset_s(v(t)) (v clamped to the image's rows;
+// joints behind the camera take the first row's time), and its visibility ray is that pixel's
+// own ray at that row's time. Fills truth.views[c] for those cameras.
+void compute_timed_views(FrameTruth& truth, const std::vector<int>& cameras,
+                         const std::vector<CameraRays>& rays, const CaptureClock& clock,
+                         const AnimatedActors& actors, const EmbreeScene& scene);
 
 }  // namespace simcap

@@ -20,6 +20,7 @@
 #include "core/error.h"
 #include "core/progress.h"
 #include "scenes/scene.h"
+#include "sim/calibration_error.h"
 #include "sim/dataset_writer.h"
 #include "sim/ground_truth.h"
 #include "sim/render_setup.h"
@@ -63,6 +64,14 @@ void select_cameras(Scene& scene, const std::vector<std::string>& wanted) {
       throw Error("--cameras: " + wanted[i] + " is listed twice");
     }
   }
+  // Per-camera settings listed in rig order follow their cameras.
+  std::vector<double> offsets;
+  for (size_t c = 0; c < scene.timing.offset_ms.size(); ++c) {
+    if (std::find(wanted.begin(), wanted.end(), all[c]) != wanted.end()) {
+      offsets.push_back(scene.timing.offset_ms[c]);
+    }
+  }
+  scene.timing.offset_ms = offsets;
   std::erase_if(scene.cameras, [&](const Camera& c) {
     return std::find(wanted.begin(), wanted.end(), c.name) == wanted.end();
   });
@@ -182,8 +191,63 @@ Json library_versions() {
   return v;
 }
 
-Json describe(const Scene& scene, const fs::path& scene_file,
-              const std::vector<PosedActor>& actors) {
+// meta.json's "calibration_error": the error's settings and each camera's exact perturbation.
+Json describe_calibration_error(const std::vector<Camera>& cameras, const CalibrationError& error) {
+  Json j;
+  j["rotation_deg"] = error.rotation_deg;
+  j["translation_m"] = error.translation_m;
+  j["focal_rel"] = error.focal_rel;
+  j["principal_px"] = error.principal_px;
+  j["seed"] = error.seed;
+  j["meaning"] =
+      "calibration/ holds each camera perturbed as listed; gt/calibration.yaml the cameras the "
+      "images were rendered with. R_written = AngleAxis(rotation_deg, rotation_axis_camera) * "
+      "R_true, centre_written = centre_true + centre_shift_m, fx and fy times focal_scale, "
+      "(cx, cy) plus principal_shift_px; distortion unchanged";
+  Json per_camera;
+  for (const Camera& c : cameras) {
+    const CameraPerturbation p = camera_perturbation(error, c.name);
+    per_camera[c.name] = {
+        {"rotation_axis_camera", {p.rotation_axis.x(), p.rotation_axis.y(), p.rotation_axis.z()}},
+        {"rotation_deg", p.rotation_deg},
+        {"centre_shift_m", {p.centre_shift_m.x(), p.centre_shift_m.y(), p.centre_shift_m.z()}},
+        {"focal_scale", p.focal_scale},
+        {"principal_shift_px", {p.principal_shift_px.x(), p.principal_shift_px.y()}}};
+  }
+  j["cameras"] = per_camera;
+  return j;
+}
+
+// meta.json's "capture": when each camera captured and for how long, when any of it differs
+// from every camera capturing every row at the frame's time in an instant.
+Json describe_capture(const Scene& scene, const CaptureClock& clock) {
+  Json c;
+  Json offsets;
+  for (size_t i = 0; i < scene.cameras.size(); ++i) {
+    offsets[scene.cameras[i].name] = 1e3 * clock.offset_s(static_cast<int>(i));
+  }
+  c["offset_ms"] = offsets;
+  c["readout_ms"] = 1e3 * clock.readout_s();
+  c["shutter"] = scene.render.shutter;
+  c["exposure_ms"] = 1e3 * clock.exposure_s();
+  c["time"] =
+      "row r of camera c in dataset frame i is captured, the middle of its exposure, at "
+      "(first_frame + i) / fps + offset_c + readout * r / (height - 1); lights change between "
+      "frames, each camera seeing them as at (first_frame + i) / fps + offset_c";
+  c["joints2d"] =
+      "each joint (and its depth) where it was when the row it lands on was captured: t = frame "
+      "time + offset_c + readout * clamp(v, 0, height - 1) / (height - 1); visibility traces that "
+      "pixel's ray at its row's time";
+  c["joints3d"] = "at the frame's nominal time (first_frame + i) / fps, like angles.csv";
+  c["blur"] =
+      "with exposure_ms > 0, rgb averages samples_per_pixel samples spread evenly over each "
+      "row's exposure (t -+ exposure / 2) and jittered over the pixel; depth, mask, parts and "
+      "normal are the ray through the pixel centre at the exposure's middle t, as the 2D truth";
+  return c;
+}
+
+Json describe(const Scene& scene, const fs::path& scene_file, const std::vector<PosedActor>& actors,
+              const CaptureClock& clock) {
   Json meta;
   meta["simcap_version"] = SIMCAP_VERSION;
   meta["libraries"] = library_versions();
@@ -216,6 +280,15 @@ Json describe(const Scene& scene, const fs::path& scene_file,
       {"angles",
        "local joint rotation relative to the neutral pose in the parent's frame, "
        "unit quaternion with qw >= 0"}};
+  if (!clock.still()) meta["capture"] = describe_capture(scene, clock);
+  if (scene.timing.auto_exposure) {
+    meta["auto_exposure"] =
+        "each image's colour is scaled by the mean linear luminance of its camera's background "
+        "plate over its own before encoding";
+  }
+  if (scene.calibration_error.any()) {
+    meta["calibration_error"] = describe_calibration_error(scene.cameras, scene.calibration_error);
+  }
   return meta;
 }
 
@@ -234,7 +307,7 @@ RenderSummary render_dataset(const fs::path& scene_file, const fs::path& out_dir
   const auto& cameras = setup.cameras();
   DatasetWriter writer(out_dir, camera_names(scene), scene.render.normals);
   writer.remove_stale_temporaries();
-  Json meta = describe(scene, scene_file, setup.actors().posed());
+  Json meta = describe(scene, scene_file, setup.actors().posed(), setup.clock());
   meta["complete"] = false;
   write_text_atomic(out_dir / "meta.json", meta.dump(2) + "\n");
   writer.write_fixed_files(scene, *setup.actors().posed().at(0).skeleton);
@@ -269,9 +342,9 @@ RenderSummary render_dataset(const fs::path& scene_file, const fs::path& out_dir
     const auto t0 = Clock::now();
     auto w = std::make_shared<FrameWork>();
     w->frame = next++;
-    setup.pose(w->frame);
-    w->truth = compute_frame_truth(w->frame, setup.actors().posed(), cameras, setup.embree());
-    if (!(options.resume && writer.frame_complete(w->frame))) {
+    if (options.resume && writer.frame_complete(w->frame)) {
+      w->truth = setup.capture(w->frame, nullptr);
+    } else {
       {
         std::lock_guard lock(spare_mutex);
         if (!spare_views.empty()) {
@@ -279,7 +352,7 @@ RenderSummary render_dataset(const fs::path& scene_file, const fs::path& out_dir
           spare_views.pop_back();
         }
       }
-      setup.renderer().render(cameras, w->frame, w->views);
+      w->truth = setup.capture(w->frame, &w->views);
       ++rendered;
     }
     render_seconds += seconds_since(t0);

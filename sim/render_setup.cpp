@@ -40,13 +40,17 @@ std::vector<CameraRays> make_rays(const std::vector<Camera>& cameras) {
 
 RenderSetup::RenderSetup(const Scene& scene, BodyBvhUpdate body_update)
     : scene_(scene),
+      clock_(scene_),
       actors_(scene_),
-      embree_(body_update),
+      embree_(body_update, clock_.time_steps()),
       cameras_(make_rays(scene_.cameras)),
       renderer_(embree_, scene_) {
   add_room_and_occluders(embree_, scene_);
   actors_.attach(embree_);
   embree_.commit();
+  // Auto exposure needs every camera's reference brightness even when a resumed render does
+  // not render the plates again.
+  if (scene_.timing.auto_exposure) render_background();
 }
 
 void RenderSetup::pose(int frame) {
@@ -61,7 +65,41 @@ std::vector<RenderedView> RenderSetup::render_background() {
   renderer_.render(cameras_, -1, views, false);
   embree_.set_actors_visible(true);
   embree_.commit();
+  if (scene_.timing.auto_exposure) {
+    std::vector<double> reference;
+    for (const RenderedView& v : views) reference.push_back(v.mean_luminance);
+    renderer_.set_exposure_reference(std::move(reference));
+  }
   return views;
+}
+
+FrameTruth RenderSetup::capture(int frame, std::vector<RenderedView>* views) {
+  if (clock_.still()) {
+    pose(frame);
+    FrameTruth truth = compute_frame_truth(frame, actors_.posed(), cameras_, embree_);
+    if (views) renderer_.render(cameras_, frame, *views);
+    return truth;
+  }
+  actors_.pose(frame, false);
+  FrameTruth truth = compute_frame_truth(frame, actors_.posed(), {}, embree_);
+  if (views) views->resize(cameras_.size());
+  for (const CaptureClock::Group& g : clock_.groups()) {
+    actors_.pose_bodies_over(frame, g.begin_s, g.end_s);
+    embree_.commit();
+    compute_timed_views(truth, g.cameras, cameras_, clock_, actors_, embree_);
+    if (!views) continue;
+    std::vector<Renderer::Shot> shots;
+    for (const int c : g.cameras) {
+      Renderer::Shot s;
+      s.rays = &cameras_[c];
+      s.view = c;
+      s.times = clock_.ray_times(c);
+      s.light_time_s = clock_.frame_time(frame) + g.offset_s;
+      shots.push_back(s);
+    }
+    renderer_.render(shots, frame, *views);
+  }
+  return truth;
 }
 
 }  // namespace simcap

@@ -18,35 +18,81 @@ namespace {
 constexpr float kShadowOffset = 2e-4f;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-enum Stream : std::uint64_t { kJitter = 1, kRgbNoise = 2, kDepthNoise = 3 };
+enum Stream : std::uint64_t { kJitter = 1, kRgbNoise = 2, kDepthNoise = 3, kShutter = 4 };
+
+// Rec. 709 luminance of linear RGB, what auto exposure meters.
+constexpr float kLuma[3] = {0.2126f, 0.7152f, 0.0722f};
 
 }  // namespace
 
+struct Renderer::ShotState {
+  const CameraRays* rays = nullptr;
+  RayTimes times;
+  std::vector<LightSource> lights;
+  std::uint64_t camera_key = 0;
+  bool blur = false;
+  float gain = 1;
+};
+
 Renderer::Renderer(const EmbreeScene& embree, const Scene& scene)
     : embree_(embree),
+      lights_(scene.lights),
       ambient_(static_cast<float>(scene.ambient)),
       samples_(std::max(1, scene.render.samples_per_pixel)),
       seed_(scene.render.seed),
       noise_(scene.noise),
-      normals_(scene.render.normals) {
-  for (const Light& l : scene.lights) {
+      normals_(scene.render.normals),
+      auto_exposure_(scene.timing.auto_exposure),
+      fps_(scene.render.fps),
+      first_frame_(scene.render.first_frame) {}
+
+std::vector<Renderer::LightSource> Renderer::lights_at(double time_s) const {
+  std::vector<LightSource> out;
+  for (const Light& light : lights_) {
+    const Light l = light_at(light, time_s);
     LightSource s;
     s.directional = l.kind == Light::Kind::directional;
     s.towards_light = (-l.direction).normalized().cast<float>();
     s.position = l.position.cast<float>();
     s.intensity = static_cast<float>(l.intensity);
     s.shadows = l.shadows;
-    lights_.push_back(s);
+    out.push_back(s);
   }
+  return out;
 }
 
 RayCounts Renderer::render(const std::vector<CameraRays>& cameras, int frame,
                            std::vector<RenderedView>& views, bool sensor_noise) const {
-  views.resize(cameras.size());
-  std::vector<Tile> tiles;
+  std::vector<Shot> shots;
   for (size_t c = 0; c < cameras.size(); ++c) {
-    const int w = cameras[c].width(), h = cameras[c].height();
-    RenderedView& v = views[c];
+    Shot s;
+    s.rays = &cameras[c];
+    s.view = static_cast<int>(c);
+    s.light_time_s = (first_frame_ + std::max(frame, 0)) / fps_;
+    shots.push_back(s);
+  }
+  views.resize(cameras.size());
+  return render(shots, frame, views, sensor_noise);
+}
+
+RayCounts Renderer::render(const std::vector<Shot>& shots, int frame,
+                           std::vector<RenderedView>& views, bool sensor_noise) const {
+  std::vector<ShotState> states;
+  std::vector<Tile> tiles;
+  for (size_t i = 0; i < shots.size(); ++i) {
+    const Shot& shot = shots[i];
+    ShotState st;
+    st.rays = shot.rays;
+    st.times = shot.times;
+    st.lights = lights_at(shot.light_time_s);
+    // Keyed by name: a camera rendered alone (render --cameras) gets the images it gets in its
+    // rig.
+    st.camera_key = text_key(shot.rays->camera().name);
+    st.blur = shot.times.exposure > 0 && samples_ > 1;
+    states.push_back(std::move(st));
+    const int w = shot.rays->width(), h = shot.rays->height();
+    if (static_cast<int>(views.size()) <= shot.view) views.resize(shot.view + 1);
+    RenderedView& v = views[shot.view];
     v.rgb.create(h, w, CV_8UC3);
     v.depth.create(h, w, CV_32FC1);
     v.mask.create(h, w, CV_8UC1);
@@ -56,25 +102,46 @@ RayCounts Renderer::render(const std::vector<CameraRays>& cameras, int frame,
     } else {
       v.normal.release();
     }
+    if (auto_exposure_) v.linear.create(h, w, CV_32FC3);
     for (int y = 0; y < h; y += kTileHeight) {
       for (int x = 0; x < w; x += kTileWidth) {
         tiles.push_back(
-            {static_cast<int>(c), x, y, std::min(w, x + kTileWidth), std::min(h, y + kTileHeight)});
+            {static_cast<int>(i), x, y, std::min(w, x + kTileWidth), std::min(h, y + kTileHeight)});
       }
     }
   }
+  std::vector<double> tile_luminance(tiles.size(), 0.0);
   std::atomic<std::uint64_t> camera_rays{0}, shadow_rays{0};
   tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1), [&](const auto& range) {
     RayCounts local;
     for (size_t i = range.begin(); i != range.end(); ++i) {
       const Tile& t = tiles[i];
-      const RayCounts n = render_tile(cameras[t.camera], t, frame, views[t.camera], sensor_noise);
+      const RayCounts n = render_tile(states[t.shot], t, frame, views[shots[t.shot].view],
+                                      sensor_noise, tile_luminance[i]);
       local.camera += n.camera;
       local.shadow += n.shadow;
     }
     camera_rays += local.camera;
     shadow_rays += local.shadow;
   });
+  if (auto_exposure_) {
+    // Summed in tile order, so the gain does not depend on the thread schedule.
+    std::vector<double> sums(shots.size(), 0.0);
+    for (size_t i = 0; i < tiles.size(); ++i) sums[tiles[i].shot] += tile_luminance[i];
+    for (size_t i = 0; i < shots.size(); ++i) {
+      RenderedView& v = views[shots[i].view];
+      v.mean_luminance = sums[i] / static_cast<double>(v.rgb.total());
+      const auto view = static_cast<size_t>(shots[i].view);
+      v.gain = view < exposure_reference_.size() && v.mean_luminance > 0
+                   ? exposure_reference_[view] / v.mean_luminance
+                   : 1.0;
+      states[i].gain = static_cast<float>(v.gain);
+    }
+    tbb::parallel_for(size_t{0}, tiles.size(), [&](size_t i) {
+      const Tile& t = tiles[i];
+      expose_tile(states[t.shot], t, frame, views[shots[t.shot].view], sensor_noise);
+    });
+  }
   return {camera_rays.load(), shadow_rays.load()};
 }
 
@@ -88,10 +155,11 @@ struct Renderer::Lanes {
   int part[N], actor[N];
 };
 
-void Renderer::trace_camera_rays(const CameraRays& rays, int px, int py, int sample,
-                                 std::uint64_t camera_key, std::uint64_t frame_key,
-                                 Lanes& l) const {
+void Renderer::trace_camera_rays(const ShotState& shot, int px, int py, int sample,
+                                 std::uint64_t frame_key, Lanes& l) const {
   constexpr int N = Lanes::N, B = CameraRays::kBlock;
+  const CameraRays& rays = *shot.rays;
+  const std::uint64_t camera_key = shot.camera_key;
   auto& ray = l.packet.ray;
   if (sample == 0) {
     const float* block = rays.block(px / B, py / B);
@@ -114,6 +182,20 @@ void Renderer::trace_camera_rays(const CameraRays& rays, int px, int py, int sam
   }
   const Eigen::Vector3f o = rays.origin();
   for (int k = 0; k < N; ++k) start_camera_ray(l.packet, k, o, static_cast<unsigned>(k));
+  for (int k = 0; k < N; ++k) ray.time[k] = shot.times.at_row(py + k / B);
+  if (shot.blur && sample > 0) {
+    // Sample s of n is jittered within the s-th of n equal parts of the exposure.
+    const float part = 1.f / static_cast<float>(samples_);
+    for (int k = 0; k < N; ++k) {
+      const std::uint64_t pixel =
+          static_cast<std::uint64_t>(py + k / B) * rays.width() + px + k % B;
+      const float u = uniform01(random_bits(
+          seed_, {kShutter, camera_key, frame_key, pixel, static_cast<std::uint64_t>(sample)}));
+      const float t =
+          ray.time[k] + shot.times.exposure * ((static_cast<float>(sample - 1) + u) * part - 0.5f);
+      ray.time[k] = std::clamp(t, 0.f, 1.f);
+    }
+  }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -140,6 +222,7 @@ void Renderer::look_up_surfaces(Lanes& l) const {
     h.u = hit.u[k];
     h.v = hit.v[k];
     h.ng = {hit.Ng_x[k], hit.Ng_y[k], hit.Ng_z[k]};
+    h.time = l.packet.ray.time[k];
     const SurfacePoint sp =
         embree_.surface(h, {l.position[0][k], l.position[1][k], l.position[2][k]},
                         {l.packet.ray.dir_x[k], l.packet.ray.dir_y[k], l.packet.ray.dir_z[k]});
@@ -228,7 +311,7 @@ int Renderer::add_light(const LightSource& light, Lanes& l) const {
       shadow.org_y[k] = l.position[1][k] + kShadowOffset * l.geometric[1][k];
       shadow.org_z[k] = l.position[2][k] + kShadowOffset * l.geometric[2][k];
       shadow.tnear[k] = 0.f;
-      shadow.time[k] = 0.f;
+      shadow.time[k] = l.packet.ray.time[k];
       shadow.mask[k] = kShadowCasterMask;
       shadow.id[k] = static_cast<unsigned>(k);
       shadow.flags[k] = 0;
@@ -249,11 +332,11 @@ int Renderer::add_light(const LightSource& light, Lanes& l) const {
 }
 
 void Renderer::add_sensor_noise(int px, int py, int width, std::uint64_t camera_key,
-                                std::uint64_t frame_key, const Lanes& l, cv::Vec3b* const* rgb_rows,
-                                float* const* depth_rows) const {
+                                std::uint64_t frame_key, const int* valid,
+                                cv::Vec3b* const* rgb_rows, float* const* depth_rows) const {
   constexpr int B = CameraRays::kBlock;
   for (int k = 0; k < Lanes::N; ++k) {
-    if (!l.valid[k]) continue;
+    if (!valid[k]) continue;
     const int x = px + k % B, y = py + k / B;
     const std::uint64_t pixel = static_cast<std::uint64_t>(y) * width + x;
     cv::Vec3b& rgb = rgb_rows[k / B][x];
@@ -273,14 +356,44 @@ void Renderer::add_sensor_noise(int px, int py, int width, std::uint64_t camera_
   }
 }
 
-RayCounts Renderer::render_tile(const CameraRays& rays, const Tile& tile, int frame,
-                                RenderedView& view, bool sensor_noise) const {
+void Renderer::write_colour(int px, int py, const ShotState& shot, std::uint64_t frame_key,
+                            const int* valid, float* linear, bool sensor_noise,
+                            cv::Vec3b* const* rgb_rows, float* const* depth_rows) const {
   constexpr int N = Lanes::N, B = CameraRays::kBlock;
   static_assert(3 * N == SrgbEncoder::kBatch);
+  alignas(64) std::uint8_t codes[3 * N];
+  // Blocks of a uniformly lit wall share one colour: encode it once.
+  int one_colour = 1;
+  for (int k = 0; k < N; ++k) {
+    one_colour &= (linear[k] == linear[0]) & (linear[N + k] == linear[N]) &
+                  (linear[2 * N + k] == linear[2 * N]);
+  }
+  if (one_colour) {
+    for (int c = 0; c < 3; ++c) std::memset(codes + c * N, encode_(linear[c * N]), N);
+  } else {
+    encode_.encode(linear, codes);
+  }
+  for (int k = 0; k < N; ++k) {
+    if (valid[k]) {
+      rgb_rows[k / B][px + k % B] = cv::Vec3b(codes[k], codes[N + k], codes[2 * N + k]);
+    }
+  }
+  if (sensor_noise) {
+    add_sensor_noise(px, py, shot.rays->width(), shot.camera_key, frame_key, valid, rgb_rows,
+                     depth_rows);
+  }
+}
+
+RayCounts Renderer::render_tile(const ShotState& shot, const Tile& tile, int frame,
+                                RenderedView& view, bool sensor_noise, double& luminance) const {
+  constexpr int N = Lanes::N, B = CameraRays::kBlock;
+  const CameraRays& rays = *shot.rays;
   const bool single_actor = embree_.actor_count() == 1;
-  // Keyed by name: a camera rendered alone (render --cameras) gets the images it gets in its rig.
-  const std::uint64_t camera_key = text_key(rays.camera().name);
   const auto frame_key = static_cast<std::uint64_t>(static_cast<std::int64_t>(frame));
+  // With motion blur the first ray (pixel centre, exposure's middle) gives the labels only and
+  // samples_ more, spread over the exposure, the colour; otherwise it is a colour sample too.
+  const int first_colour_sample = shot.blur ? 1 : 0;
+  const int last_sample = shot.blur ? samples_ : samples_ - 1;
   RayCounts counts;
   Lanes l;
   for (int py = tile.y0; py < tile.y1; py += B) {
@@ -299,16 +412,11 @@ RayCounts Renderer::render_tile(const CameraRays& rays, const Tile& tile, int fr
       for (int k = 0; k < N; ++k) {
         l.valid[k] = px + k % B < tile.x1 && py + k / B < tile.y1 ? -1 : 0;
         l.red[k] = l.green[k] = l.blue[k] = 0.f;
-        counts.camera += l.valid[k] ? samples_ : 0;
+        counts.camera += l.valid[k] ? last_sample + 1 : 0;
       }
-      for (int s = 0; s < samples_; ++s) {
-        trace_camera_rays(rays, px, py, s, camera_key, frame_key, l);
+      for (int s = 0; s <= last_sample; ++s) {
+        trace_camera_rays(shot, px, py, s, frame_key, l);
         look_up_surfaces(l);
-        for (int k = 0; k < N; ++k) {
-          l.red[k] += ambient_ * l.albedo[0][k];
-          l.green[k] += ambient_ * l.albedo[1][k];
-          l.blue[k] += ambient_ * l.albedo[2][k];
-        }
         if (s == 0) {
           const float* z_scale = rays.block(px / B, py / B) + 3 * N;
           for (int k = 0; k < N; ++k) {
@@ -325,41 +433,64 @@ RayCounts Renderer::render_tile(const CameraRays& rays, const Tile& tile, int fr
             }
           }
         }
-        for (const LightSource& light : lights_) {
+        if (s < first_colour_sample) continue;
+        for (int k = 0; k < N; ++k) {
+          l.red[k] += ambient_ * l.albedo[0][k];
+          l.green[k] += ambient_ * l.albedo[1][k];
+          l.blue[k] += ambient_ * l.albedo[2][k];
+        }
+        for (const LightSource& light : shot.lights) {
           counts.shadow += static_cast<std::uint64_t>(add_light(light, l));
         }
       }
 
       alignas(64) float linear[3 * N];
-      alignas(64) std::uint8_t codes[3 * N];
       const float scale = 1.f / static_cast<float>(samples_);
       for (int k = 0; k < N; ++k) {
         linear[k] = scale * l.red[k];
         linear[N + k] = scale * l.green[k];
         linear[2 * N + k] = scale * l.blue[k];
       }
-      // Blocks of a uniformly lit wall share one colour: encode it once.
-      int one_colour = 1;
+      if (!auto_exposure_) {
+        write_colour(px, py, shot, frame_key, l.valid, linear, sensor_noise, rgb_rows, depth_rows);
+        continue;
+      }
+      // Auto exposure needs the whole image's mean first: keep the colour for expose_tile().
       for (int k = 0; k < N; ++k) {
-        one_colour &= (linear[k] == linear[0]) & (linear[N + k] == linear[N]) &
-                      (linear[2 * N + k] == linear[2 * N]);
-      }
-      if (one_colour) {
-        for (int c = 0; c < 3; ++c) std::memset(codes + c * N, encode_(linear[c * N]), N);
-      } else {
-        encode_.encode(linear, codes);
-      }
-      for (int k = 0; k < N; ++k) {
-        if (l.valid[k]) {
-          rgb_rows[k / B][px + k % B] = cv::Vec3b(codes[k], codes[N + k], codes[2 * N + k]);
-        }
-      }
-      if (sensor_noise) {
-        add_sensor_noise(px, py, rays.width(), camera_key, frame_key, l, rgb_rows, depth_rows);
+        if (!l.valid[k]) continue;
+        const cv::Vec3f c(linear[k], linear[N + k], linear[2 * N + k]);
+        view.linear.at<cv::Vec3f>(py + k / B, px + k % B) = c;
+        luminance += kLuma[0] * c[0] + kLuma[1] * c[1] + kLuma[2] * c[2];
       }
     }
   }
   return counts;
+}
+
+void Renderer::expose_tile(const ShotState& shot, const Tile& tile, int frame, RenderedView& view,
+                           bool sensor_noise) const {
+  constexpr int N = Lanes::N, B = CameraRays::kBlock;
+  const auto frame_key = static_cast<std::uint64_t>(static_cast<std::int64_t>(frame));
+  for (int py = tile.y0; py < tile.y1; py += B) {
+    float* depth_rows[B];
+    cv::Vec3b* rgb_rows[B];
+    for (int r = 0; r < B; ++r) {
+      const int y = std::min(py + r, tile.y1 - 1);
+      depth_rows[r] = view.depth.ptr<float>(y);
+      rgb_rows[r] = view.rgb.ptr<cv::Vec3b>(y);
+    }
+    for (int px = tile.x0; px < tile.x1; px += B) {
+      alignas(64) int valid[N];
+      alignas(64) float linear[3 * N];
+      for (int k = 0; k < N; ++k) {
+        const int x = px + k % B, y = py + k / B;
+        valid[k] = x < tile.x1 && y < tile.y1 ? -1 : 0;
+        const cv::Vec3f c = valid[k] ? view.linear.at<cv::Vec3f>(y, x) : cv::Vec3f();
+        for (int ch = 0; ch < 3; ++ch) linear[ch * N + k] = shot.gain * c[ch];
+      }
+      write_colour(px, py, shot, frame_key, valid, linear, sensor_noise, rgb_rows, depth_rows);
+    }
+  }
 }
 
 }  // namespace simcap

@@ -166,7 +166,39 @@ INSTANTIATE_TEST_SUITE_P(
                 "an integer in [1, 65536]"},
         BadCase{"render:\n  frames: 5\n  frames: 6\n", 3, "render.frames", "duplicate key"},
         BadCase{"render: {frames: 5}\nnoise:\n  depth_sigma: -0.1\n", 3, "noise.depth_sigma",
-                "in [0, 10]"}));
+                "in [0, 10]"},
+        // The capture nuisances (scenes/capture_keys.h).
+        BadCase{"rig:\n  calibration_error: {rotation_deg: -1}\n", 2,
+                "rig.calibration_error.rotation_deg", "in [0, 180]"},
+        BadCase{"rig:\n  calibration_error: {focal_rel: 1}\n", 2, "rig.calibration_error.focal_rel",
+                "in [0, 1)"},
+        BadCase{"rig:\n  calibration_error: {shear: 1}\n", 2, "rig.calibration_error.shear",
+                "unknown key"},
+        BadCase{"rig:\n  sync: {offset_ms: [0, 1, 2]}\n", 2, "rig.sync.offset_ms",
+                "one offset per camera (4), got 3"},
+        BadCase{"rig:\n  sync: {offset_ms: [0, 1, 2, 3], offset_ms_sigma: 2}\n", 2,
+                "rig.sync.offset_ms_sigma", "one way only"},
+        BadCase{"rig:\n  sync: {seed: 2}\n", 2, "rig.sync", "offset_ms"},
+        BadCase{"rig:\n  sync: {offset_ms_sigma: -2}\n", 2, "rig.sync.offset_ms_sigma",
+                "in [0, 10000]"},
+        BadCase{"rig:\n  readout_ms: -3\n", 2, "rig.readout_ms", "in [0, 10000]"},
+        BadCase{"rig:\n  auto_exposure: sometimes\n", 2, "rig.auto_exposure", "true or false"},
+        BadCase{"render:\n  frames: 2\n  shutter: 1.5\n", 3, "render.shutter", "in [0, 1]"},
+        BadCase{"render:\n  frames: 2\n  shutter: 0.5\n", 3, "render.shutter",
+                "samples_per_pixel > 1"},
+        BadCase{"lights:\n  - type: point\n    keyframes: [{intensity: 1}]\n", 3,
+                "lights[0].keyframes[0]", "missing key 'time'"},
+        BadCase{"lights:\n  - type: point\n    keyframes:\n      - {time: 1, intensity: 1}\n"
+                "      - {time: 1, intensity: 2}\n",
+                5, "lights[0].keyframes[1].time", "must increase"},
+        BadCase{"lights:\n  - type: point\n    keyframes: [{time: 1, direction: [0, -1, 0]}]\n", 3,
+                "lights[0].keyframes[0].direction", "unknown key"},
+        BadCase{"lights:\n  - type: point\n    keyframes: [{time: 1}]\n", 3,
+                "lights[0].keyframes[0]", "a value besides its time"},
+        BadCase{"lights:\n  - type: directional\n    keyframes:\n"
+                "      - {time: 0, direction: [0, -1, 0]}\n"
+                "      - {time: 1, direction: [0, 1, 0]}\n",
+                5, "lights[0].keyframes[1].direction", "opposite"}));
 
 TEST(SceneErrors, DuplicateTopLevelSectionIsRejected) {
   TempDir dir;

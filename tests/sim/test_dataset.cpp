@@ -18,178 +18,13 @@
 #include "core/image_io.h"
 #include "scenes/scene.h"
 #include "sim/animated_actors.h"
+#include "tests/sim/dataset_checks.h"
 #include "tests/support/temp_dir.h"
 
 namespace simcap {
 namespace {
 namespace fs = std::filesystem;
-using testing::run_simcap;
-using testing::TempDir;
-
-constexpr int kFrames = 4;
-constexpr int kWidth = 320, kHeight = 240;
-const char* const kKinds[] = {"rgb", "depth", "mask", "parts"};
-
-std::string scene_path(const std::string& name) {
-  return std::string(SIMCAP_SOURCE_DIR) + "/scenes/" + name + ".yaml";
-}
-
-// A small, fast render of a shipped scene: a few frames at a quarter of the pixels.
-int render(const std::string& scene, const fs::path& out, const std::string& extra = "",
-           std::string* output = nullptr) {
-  std::string log;
-  const int status =
-      run_simcap("render " + scene + " -o " + out.string() + " --frames " +
-                     std::to_string(kFrames) + " -q --set 'rig.resolution=[" +
-                     std::to_string(kWidth) + "," + std::to_string(kHeight) + "]' " + extra,
-                 &log);
-  if (output) *output = log;
-  EXPECT_EQ(status, 0) << log;
-  return status;
-}
-
-struct CameraCalibration {
-  cv::Mat K, dist, rvec, t, R;
-  int width = 0, height = 0;
-};
-
-// calibration/opencv.yaml read back with OpenCV itself.
-std::map<std::string, CameraCalibration> read_calibration(const fs::path& file) {
-  cv::FileStorage fs(file.string(), cv::FileStorage::READ);
-  EXPECT_TRUE(fs.isOpened());
-  std::map<std::string, CameraCalibration> cams;
-  for (const auto& name_node : fs["camera_names"]) {
-    const std::string name = name_node.string();
-    const cv::FileNode n = fs[name];
-    CameraCalibration c;
-    n["K"] >> c.K;
-    n["dist"] >> c.dist;
-    n["rvec"] >> c.rvec;
-    n["t"] >> c.t;
-    n["R"] >> c.R;
-    c.width = static_cast<int>(n["image_width"]);
-    c.height = static_cast<int>(n["image_height"]);
-    cams[name] = c;
-  }
-  return cams;
-}
-
-struct Joint2d {
-  int frame;
-  std::string camera, joint;
-  double u, v, depth;
-  std::string visibility;
-};
-
-std::vector<Joint2d> read_joints2d(const fs::path& file) {
-  CsvReader csv(file, {"frame", "camera", "joint", "u", "v", "depth", "visibility"});
-  std::vector<Joint2d> rows;
-  while (csv.next()) {
-    rows.push_back({static_cast<int>(csv.integer(0)), csv.text(1), csv.text(2), csv.number(3),
-                    csv.number(4), csv.number(5), csv.text(6)});
-  }
-  return rows;
-}
-
-// frame -> joint -> position
-std::map<int, std::map<std::string, cv::Point3d>> read_joints3d(const fs::path& file) {
-  CsvReader csv(file, {"frame", "joint", "x", "y", "z"});
-  std::map<int, std::map<std::string, cv::Point3d>> out;
-  while (csv.next()) {
-    out[static_cast<int>(csv.integer(0))][csv.text(1)] = {csv.number(2), csv.number(3),
-                                                          csv.number(4)};
-  }
-  return out;
-}
-
-fs::path image_file(const fs::path& dir, const std::string& cam, const std::string& kind,
-                    int frame) {
-  char name[32];
-  std::snprintf(name, sizeof name, "%06d.%s", frame, kind == "depth" ? "exr" : "png");
-  return dir / cam / kind / name;
-}
-
-std::map<std::string, int> count_visibility(const std::vector<Joint2d>& rows) {
-  std::map<std::string, int> n;
-  for (const auto& r : rows) ++n[r.visibility];
-  return n;
-}
-
-// The mask value of a joint's own actor: 255 with one actor, else 1 + the actor's index (the
-// second actor's joints are named "actor1/<joint>").
-int own_mask_value(const std::string& joint, int actors) {
-  if (actors == 1) return 255;
-  return joint.rfind("actor1/", 0) == 0 ? 2 : 1;
-}
-
-// Every cross-file consistency the dataset promises.
-void check_consistency(const fs::path& dir, int actors = 1) {
-  const auto cams = read_calibration(dir / "calibration" / "opencv.yaml");
-  ASSERT_EQ(cams.size(), 4u);
-  const auto joints3d = read_joints3d(dir / "gt" / "joints3d.csv");
-  const auto rows = read_joints2d(dir / "gt" / "joints2d.csv");
-  ASSERT_EQ(joints3d.size(), static_cast<size_t>(kFrames));
-  ASSERT_EQ(rows.size(), kFrames * cams.size() * joints3d.begin()->second.size());
-
-  std::map<std::pair<int, std::string>, std::pair<cv::Mat, cv::Mat>> images;  // mask, depth
-  auto image_pair = [&](int frame, const std::string& cam) -> const std::pair<cv::Mat, cv::Mat>& {
-    auto& p = images[{frame, cam}];
-    if (p.first.empty()) {
-      p = {read_image(image_file(dir, cam, "mask", frame)),
-           read_image(image_file(dir, cam, "depth", frame))};
-    }
-    return p;
-  };
-  for (const Joint2d& r : rows) {
-    SCOPED_TRACE("frame " + std::to_string(r.frame) + " " + r.camera + " " + r.joint);
-    const CameraCalibration& c = cams.at(r.camera);
-    const cv::Point3d X = joints3d.at(r.frame).at(r.joint);
-    cv::Mat Xc = c.R * cv::Mat(X) + c.t;
-    EXPECT_NEAR(r.depth, Xc.at<double>(2), 1e-6);
-    if (std::isnan(r.u)) {
-      EXPECT_LE(r.depth, 0);
-      EXPECT_EQ(r.visibility, "out_of_frame");
-      continue;
-    }
-    std::vector<cv::Point2d> px;
-    cv::projectPoints(std::vector<cv::Point3d>{X}, c.rvec, c.t, c.K, c.dist, px);
-    EXPECT_LT(std::hypot(px[0].x - r.u, px[0].y - r.v), 1e-3);
-
-    const bool inside =
-        r.depth > 0 && r.u >= -0.5 && r.u < c.width - 0.5 && r.v >= -0.5 && r.v < c.height - 0.5;
-    if (!inside) {
-      EXPECT_EQ(r.visibility, "out_of_frame");
-      continue;
-    }
-    const auto& [mask, depth] = image_pair(r.frame, r.camera);
-    const int x = static_cast<int>(std::lround(r.u)), y = static_cast<int>(std::lround(r.v));
-    const int m = mask.at<std::uint8_t>(y, x);
-    const double d = depth.at<float>(y, x);
-    // Tables hold 7 decimals and the image float32: 1e-5 m covers both roundings.
-    const int own = own_mask_value(r.joint, actors);
-    if (r.visibility == "visible") {
-      EXPECT_EQ(m, own);
-      EXPECT_LE(std::abs(d - r.depth), 0.15 + 1e-5);
-    } else if (r.visibility == "self_occluded") {
-      EXPECT_EQ(m, own);
-      EXPECT_LT(d, r.depth - 0.15 + 1e-5);
-    } else if (r.visibility == "scene_occluded") {
-      EXPECT_NE(m, own);
-      EXPECT_LT(d, r.depth - 0.15 + 1e-5);
-    } else {
-      ADD_FAILURE() << "joint inside the image marked " << r.visibility;
-    }
-  }
-
-  // The mask is exactly where a body part is seen.
-  for (const auto& [name, c] : cams) {
-    for (int f = 0; f < kFrames; ++f) {
-      const cv::Mat mask = read_image(image_file(dir, name, "mask", f));
-      const cv::Mat parts = read_image(image_file(dir, name, "parts", f));
-      EXPECT_EQ(cv::countNonZero((mask != 0) != (parts != 0)), 0) << name << " frame " << f;
-    }
-  }
-}
+using namespace simcap::testing;
 
 class StudioDataset : public ::testing::Test {
  protected:
@@ -299,7 +134,7 @@ actors:
 )";
   EXPECT_EQ(AnimatedActors(load_scene(dir / "pair.yaml")).body_count(), 1);
   ASSERT_EQ(render((dir / "pair.yaml").string(), dir / "d"), 0);
-  check_consistency(dir / "d", 2);
+  check_consistency(dir / "d");
   // The second actor's joints are the first's, moved by the difference of the offsets.
   const auto joints = read_joints3d(dir / "d" / "gt" / "joints3d.csv");
   for (const auto& [frame, by_name] : joints) {
@@ -343,14 +178,6 @@ TEST(RenderDataset, NormalsAreUnitVectorsFacingTheCamera) {
   // Smoothly interpolated normals may tip past 90 degrees only at the body's silhouette.
   EXPECT_LT(facing_away, body / 10 + 1);
   EXPECT_LT(facing_away, pixels / 1000);
-}
-
-std::map<std::string, std::string> read_tree(const fs::path& root) {
-  std::map<std::string, std::string> files;
-  for (const auto& e : fs::recursive_directory_iterator(root)) {
-    if (e.is_regular_file()) files[fs::relative(e.path(), root).string()] = read_text(e.path());
-  }
-  return files;
 }
 
 TEST(RenderDataset, SameSeedGivesByteIdenticalFiles) {
