@@ -8,11 +8,13 @@
 
 #include "collect/collection_job.h"
 #include "core/atomic_file.h"
+#include "tests/collect/collection_files.h"
 #include "tests/support/temp_dir.h"
 
 namespace simcap {
 namespace {
 
+using testing::expect_same;
 using testing::run_simcap;
 using testing::TempDir;
 namespace fs = std::filesystem;
@@ -27,48 +29,6 @@ fs::path write_spec(const TempDir& dir) {
                    << "bodies: {height: {uniform: [1.55, 1.95]}}\n"
                    << "colors: {shirt: [\"#aa2222\", [0.1, 0.5, 0.2]]}\n";
   return p;
-}
-
-// Every file of a collection by relative path, timing fields left out (meta.json's timings,
-// the render seconds of sequence.json and the index).
-std::map<std::string, std::string> contents(const fs::path& root) {
-  std::map<std::string, std::string> files;
-  for (const auto& e : fs::recursive_directory_iterator(root)) {
-    if (!e.is_regular_file()) continue;
-    const std::string rel = e.path().lexically_relative(root).string();
-    std::string text = read_text(e.path());
-    const std::string name = e.path().filename().string();
-    if (name == "meta.json" || name == "sequence.json") {
-      auto j = nlohmann::json::parse(text);
-      j.erase("timings");
-      j.erase("render_s");
-      text = j.dump();
-    } else if (name == "index.json") {
-      auto j = nlohmann::json::parse(text);
-      for (auto& s : j) s.erase("render_s");
-      text = j.dump();
-    } else if (name == "index.csv") {
-      std::string stripped, line;
-      std::istringstream in(text);
-      while (std::getline(in, line)) {  // render_s is the sixth column
-        size_t at = 0;
-        for (int i = 0; i < 5; ++i) at = line.find(',', at) + 1;
-        stripped += line.substr(0, at) + line.substr(line.find(',', at)) + "\n";
-      }
-      text = stripped;
-    }
-    files[rel] = text;
-  }
-  return files;
-}
-
-void expect_same(const fs::path& a, const fs::path& b) {
-  const auto fa = contents(a), fb = contents(b);
-  std::vector<std::string> na, nb;
-  for (const auto& [k, v] : fa) na.push_back(k);
-  for (const auto& [k, v] : fb) nb.push_back(k);
-  ASSERT_EQ(na, nb);
-  for (const auto& [k, v] : fa) EXPECT_TRUE(v == fb.at(k)) << k << " differs";
 }
 
 TEST(CollectCli, ShardsGiveTheUnshardedBytesAndResumeAfterAKill) {
