@@ -2,6 +2,8 @@
 # Installs exactly the Debian 12 packages simcap builds against; skips apt when all are present.
 set -euo pipefail
 
+# slurmctld, slurmd, slurm-client, munge: the one-node cluster of tests/collect's Slurm test
+# (started by the test itself in a temporary folder; the packages' services are not used).
 # openimageio-tools: Debian's OpenImageIOConfig.cmake imports its programs (/usr/bin/iconvert),
 # so find_package(OpenImageIO) fails without them, and libopenimageio-dev only recommends them.
 packages=(
@@ -10,6 +12,7 @@ packages=(
   liburdfdom-dev liburdfdom-tools libtbb-dev libyaml-cpp-dev nlohmann-json3-dev
   libpugixml-dev libcli11-dev googletest libgtest-dev libbenchmark-dev libpng-dev
   openimageio-tools
+  slurmctld slurmd slurm-client munge
 )
 
 missing=()

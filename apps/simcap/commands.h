@@ -20,6 +20,7 @@ void add_model(CLI::App& app, Action& action);
 void add_motion(CLI::App& app, Action& action);
 void add_ik_eval(CLI::App& app, Action& action);
 void add_export(CLI::App& app, Action& action);
+void add_collect(CLI::App& app, Action& action);
 void add_version(CLI::App& app, Action& action);
 
 }  // namespace simcap::cli

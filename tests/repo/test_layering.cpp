@@ -21,6 +21,7 @@ const std::map<std::string, std::vector<std::string>>& allowed() {
       {"models", {"core"}},
       {"scenes", {"core", "models"}},
       {"sim", {"core", "models", "scenes"}},
+      {"collect", {"core", "models", "scenes", "sim"}},
       {"tracker/common", {"core"}},
       {"tracker/moschini", {"core", "models", "tracker/common"}},
       {"tracker/unzueta", {"core", "models", "tracker/common"}},
