@@ -28,6 +28,13 @@ struct PosedActor {
   const std::vector<BodyPoint>* h36m17 = nullptr;
 };
 
+// A labelled stretch of an actor's motion (a gesture corpus' gestures), in dataset frames.
+struct ActorLabel {
+  int actor = 0;
+  int first_frame = 0, last_frame = 0;  // inclusive
+  MotionLabel label;
+};
+
 class AnimatedActors {
  public:
   // Builds every actor's skeleton, body and motion (at the scene's frame rate). Motion files
@@ -44,6 +51,9 @@ class AnimatedActors {
   // ends the last one.
   void pose(int frame);
   const std::vector<PosedActor>& posed() const { return posed_; }
+  // The labels of every actor's motion that fall in dataset frames [0, frames), clipped to
+  // them, by actor then start.
+  std::vector<ActorLabel> labels(int frames) const;
   // Number of distinct skinned bodies (fewer than actors when actors share one).
   int body_count() const { return static_cast<int>(groups_.size()); }
 

@@ -96,6 +96,18 @@ void DatasetWriter::write_fixed_files(const Scene& scene, const Skeleton& skelet
   write_text_atomic(root_ / "parts.json", parts.dump(2) + "\n");
 }
 
+void DatasetWriter::write_gestures(const std::vector<ActorLabel>& labels,
+                                   const std::vector<PosedActor>& actors) const {
+  if (labels.empty()) return;
+  CsvWriter csv(root_ / "gt" / "gestures.csv",
+                {"actor", "limb", "kind", "label", "first_frame", "last_frame"});
+  for (const ActorLabel& l : labels) {
+    csv.out() << actors.at(l.actor).name << ',' << l.label.limb << ',' << l.label.kind << ','
+              << l.label.label << ',' << l.first_frame << ',' << l.last_frame << '\n';
+  }
+  csv.commit();
+}
+
 void DatasetWriter::write_backgrounds(const std::vector<RenderedView>& views) const {
   tbb::parallel_for(size_t{0}, views.size(), [&](size_t c) {
     write_image(root_ / "background" / (cameras_.at(c) + ".png"), views[c].rgb,
