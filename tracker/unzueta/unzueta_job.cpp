@@ -44,7 +44,7 @@ struct Images {
 
 class Pipeline {
  public:
-  Pipeline(const fs::path& root, const UnzuetaOptions& options)
+  Pipeline(const fs::path& root, const SikTrackOptions& options)
       : options_(options), ds_(root), silhouettes_(ds_, options.silhouettes) {
     frames_ = ds_.frames(silhouettes_.image_kind());
     if (silhouettes_.image_kind() != "rgb" && ds_.frames("rgb") != frames_) {
@@ -54,11 +54,14 @@ class Pipeline {
       frames_.resize(options.max_frames);
     }
     if (frames_.empty()) throw Error(root.string() + ": no frames to track");
+    if (options.effectors == EffectorSource::gt) {
+      throw Error("the pixel pipeline needs --effectors depth, mono or multiview");
+    }
     if (options.camera < 0 || options.camera >= ds_.camera_count()) {
       throw Error("--camera: the dataset has " + std::to_string(ds_.camera_count()) +
                   " camera(s); index " + std::to_string(options.camera) + " does not exist");
     }
-    if (options.effectors == EffectorMode::multiview) {
+    if (options.effectors == EffectorSource::multiview) {
       if (ds_.camera_count() < 2) {
         throw Error("--effectors multiview: " + root.string() + " has one camera (needs two)");
       }
@@ -69,7 +72,7 @@ class Pipeline {
     trackers_.assign(cameras_.size(), CameraTracker(options.tracking));
   }
 
-  UnzuetaSummary run(const UnzuetaSink& sink) {
+  TrackSummary run(const UnzuetaSink& sink) {
     Progress progress("sik from pixels", static_cast<long>(frames_.size()), options_.quiet);
     const auto start = std::chrono::steady_clock::now();
     for (size_t k = 0; k < frames_.size(); ++k) {
@@ -93,7 +96,7 @@ class Pipeline {
       progress.advance();
     }
     progress.finish();
-    UnzuetaSummary s;
+    TrackSummary s;
     s.frames = static_cast<int>(frames_.size());
     s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return s;
@@ -108,7 +111,7 @@ class Pipeline {
     Images im;
     im.silhouette = silhouettes_.extract(c, f, &im.bgr);
     if (im.bgr.empty()) im.bgr = ds_.rgb(c, f);
-    if (options_.effectors == EffectorMode::depth) {
+    if (options_.effectors == EffectorSource::depth) {
       const fs::path path = ds_.root() / camera(c).name / "depth" / frame_name(f, "exr");
       if (!fs::is_regular_file(path)) {
         throw Error(path.string() + ": missing (--effectors depth reads the dataset's depth maps)");
@@ -142,13 +145,13 @@ class Pipeline {
 
   void initialize(int f, const std::vector<Images>& images) {
     std::optional<JointTrack> truth;
-    if (options_.init == EffectorInit::gt) truth = ds_.ground_truth("--init gt");
+    if (options_.init == InitMethod::gt) truth = ds_.ground_truth("--init gt");
     // ROIs per camera.
     std::vector<InitialRegions> regions(cameras_.size());
     const size_t primary =
-        options_.effectors == EffectorMode::multiview ? static_cast<size_t>(options_.camera) : 0;
+        options_.effectors == EffectorSource::multiview ? static_cast<size_t>(options_.camera) : 0;
     std::array<Eigen::Vector3d, kEffectorCount> posture{};
-    if (options_.init == EffectorInit::gt) {
+    if (options_.init == InitMethod::gt) {
       for (size_t i = 0; i < cameras_.size(); ++i) {
         const fs::path labels =
             ds_.root() / camera(cameras_[i]).name / "parts" / frame_name(f, "png");
@@ -199,7 +202,7 @@ class Pipeline {
     rotation_.assign(skeleton_.size(), Eigen::Quaterniond::Identity());
 
     // The parts' first 3D centres.
-    if (options_.effectors == EffectorMode::mono) {
+    if (options_.effectors == EffectorSource::mono) {
       if (truth) {
         const int ti = truth->frames.empty() || truth->frames.front() != f ? -1 : 0;
         if (ti < 0) throw Error("--init gt: the ground truth has no frame " + std::to_string(f));
@@ -301,7 +304,7 @@ class Pipeline {
     std::array<Eigen::Vector3d, kEffectorCount> out = centre_;
     for (Effector e : kEffectors) {
       const int i = index_of(e);
-      if (options_.effectors == EffectorMode::multiview) {
+      if (options_.effectors == EffectorSource::multiview) {
         std::vector<PixelObservation> views;
         int seen = -1;  // a camera that still has the part (tracking or predicted)
         for (size_t k = 0; k < cameras_.size(); ++k) {
@@ -326,7 +329,7 @@ class Pipeline {
       const CfofState s = t.state(e);
       if (s == CfofState::lost) continue;
       const cv::Point2d px = t.position(e);
-      if (options_.effectors == EffectorMode::mono) {
+      if (options_.effectors == EffectorSource::mono) {
         out[i] = point_at_depth(camera(c), px, mono_depth_[i]);
         continue;
       }
@@ -367,7 +370,7 @@ class Pipeline {
     for (int j : he15_) out.he15.push_back(position_[j]);
   }
 
-  UnzuetaOptions options_;
+  SikTrackOptions options_;
   Dataset ds_;
   SilhouetteExtractor silhouettes_;
   std::vector<int> frames_, cameras_;
@@ -386,14 +389,14 @@ class Pipeline {
 
 }  // namespace
 
-UnzuetaSummary run_unzueta(const fs::path& dataset, const UnzuetaOptions& options,
+TrackSummary run_unzueta(const fs::path& dataset, const SikTrackOptions& options,
                            const UnzuetaSink& sink) {
   Pipeline pipeline(dataset, options);
   return pipeline.run(sink);
 }
 
-UnzuetaSummary track_dataset_unzueta(const fs::path& dataset, const fs::path& out,
-                                     const UnzuetaOptions& options) {
+TrackSummary track_dataset_unzueta(const fs::path& dataset, const fs::path& out,
+                                     const SikTrackOptions& options) {
   Pipeline pipeline(dataset, options);
   JointTrack track;
   track.joints = he15_joints();
@@ -402,7 +405,7 @@ UnzuetaSummary track_dataset_unzueta(const fs::path& dataset, const fs::path& ou
   CsvWriter e3d(out / "effectors3d.csv", {"frame", "effector", "joint", "x", "y", "z"});
   const Dataset ds(dataset);
   char line[256];
-  UnzuetaSummary s = pipeline.run([&](const UnzuetaFrame& f, const std::vector<int>& cameras,
+  TrackSummary s = pipeline.run([&](const UnzuetaFrame& f, const std::vector<int>& cameras,
                                       const std::vector<CameraTracker>& trackers) {
     track.add_frame(f.frame, f.he15);
     for (Effector e : kEffectors) {

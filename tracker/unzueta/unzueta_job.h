@@ -7,35 +7,11 @@
 #include <functional>
 
 #include "core/joint_track.h"
-#include "tracker/common/silhouettes.h"
+#include "tracker/common/track_summary.h"
 #include "tracker/unzueta/camera_tracker.h"
-#include "tracker/unzueta/sik_pelvis.h"
+#include "tracker/unzueta/sik_track_job.h"
 
 namespace simcap::tracker {
-
-// How the tracked image points become 3D (SIK's input).
-enum class EffectorMode {
-  depth,      // one camera and its depth image: the thesis' "full 3D with a depth camera"
-  mono,       // one camera: each part keeps the depth it had at the start (ch. 3, "pseudo 3D")
-  multiview,  // every camera tracks; the points are triangulated
-};
-// How tracking starts on the first frame.
-enum class EffectorInit {
-  calibration,  // the calibration posture found in the silhouette (initial_regions.h)
-  gt,           // ROIs around the parts' pixels in the part-label images; the ground truth's
-                // body size and first-frame positions (a diagnosis of the tracking alone)
-};
-
-struct UnzuetaOptions {
-  EffectorMode effectors = EffectorMode::depth;
-  EffectorInit init = EffectorInit::calibration;
-  SilhouetteMethod silhouettes = SilhouetteMethod::gt;
-  int camera = 0;  // depth and mono: the camera's index in the calibration
-  CameraTrackerParams tracking;
-  SikPelvisWeights pelvis_weights;
-  int max_frames = -1;  // < 0: all
-  bool quiet = false;
-};
 
 struct UnzuetaFrame {
   int frame = 0;
@@ -44,26 +20,21 @@ struct UnzuetaFrame {
   std::vector<Eigen::Vector3d> he15;  // the solved pose's HE15 joints (he15_joints() order)
 };
 
-struct UnzuetaSummary {
-  int frames = 0;
-  double seconds = 0;
-  std::filesystem::path track;
-};
-
 // Runs the pipeline on the dataset's frames in order; `sink` (may be empty) sees each frame with
 // the trackers of the cameras used (one for depth and mono, all for multiview) and their
 // calibration indices.
 using UnzuetaSink = std::function<void(const UnzuetaFrame&, const std::vector<int>& cameras,
                                        const std::vector<CameraTracker>& trackers)>;
-UnzuetaSummary run_unzueta(const std::filesystem::path& dataset, const UnzuetaOptions& options,
-                           const UnzuetaSink& sink);
+// options.effectors must be depth, mono or multiview.
+TrackSummary run_unzueta(const std::filesystem::path& dataset, const SikTrackOptions& options,
+                         const UnzuetaSink& sink);
 
 // run_unzueta writing OUT/joints3d.csv (HE15), OUT/effectors2d.csv (per camera used, frame and
 // effector: the pixel of its joint as estimated, the tracked part's pixel and the tracker's state),
 // OUT/effectors3d.csv (SIK's targets) and OUT/diagnostics/sik_humanoid.csv.
-UnzuetaSummary track_dataset_unzueta(const std::filesystem::path& dataset,
-                                     const std::filesystem::path& out,
-                                     const UnzuetaOptions& options);
+TrackSummary track_dataset_unzueta(const std::filesystem::path& dataset,
+                                   const std::filesystem::path& out,
+                                   const SikTrackOptions& options);
 
 // u, v: the joint's estimated pixel; part_u, part_v: the tracked part's image position (CFOF's
 // ROI centre, the pelvis of Alg. 6).
