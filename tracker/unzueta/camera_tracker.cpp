@@ -1,9 +1,6 @@
 #include "tracker/unzueta/camera_tracker.h"
 
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
@@ -25,9 +22,9 @@ cv::Rect2d CameraTracker::part_box(const CfofTracker& t) const {
   return {c.x - 0.5 * size.width, c.y - 0.5 * size.height, size.width, size.height};
 }
 
-std::optional<cv::Point2d> CameraTracker::far_end(Effector e, const CfofFrame& frame,
-                                                  const cv::Mat& silhouette,
-                                                  std::optional<cv::Point2d> root) const {
+std::optional<LimbEnd> CameraTracker::far_end(Effector e, const CfofFrame& frame,
+                                              const cv::Mat& silhouette,
+                                              std::optional<cv::Point2d> root) const {
   const CfofTracker& t = parts_[part_index(e)];
   const cv::Point2d c = t.centre();
   const int half = static_cast<int>(std::ceil(params_.anchor_window * person_px_));
@@ -39,21 +36,13 @@ std::optional<cv::Point2d> CameraTracker::far_end(Effector e, const CfofFrame& f
   const cv::Mat part = t.colour_probability(frame, window) >= std::ceil(params_.anchor_color * 255);
   std::optional<cv::Point2d> start;
   if (root) start = *root - cv::Point2d(window.tl());
-  const auto end = limb_end(part, silhouette(window), c - cv::Point2d(window.tl()),
-                            params_.anchor_length[part_index(e)] * person_px_, start,
-                            params_.anchor_root_tolerance * person_px_);
-  if (std::getenv("UNZ_DEBUG") && e == Effector::left_hand) {
-    static int k = 0;
-    if (++k == 55) {
-      cv::imwrite("/tmp/unz/dbg/part.png", part);
-      cv::imwrite("/tmp/unz/dbg/body.png", silhouette(window));
-      std::fprintf(stderr, "window %d %d %d %d centre %.1f %.1f end %.1f %.1f len %.1f\n", window.x,
-                   window.y, window.width, window.height, c.x, c.y, end ? end->x + window.x : -1,
-                   end ? end->y + window.y : -1, params_.anchor_length[part_index(e)] * person_px_);
-    }
-  }
+  auto end = limb_end(part, silhouette(window), c - cv::Point2d(window.tl()),
+                      params_.anchor_length[part_index(e)] * person_px_, start,
+                      params_.anchor_root_tolerance * person_px_);
   if (!end) return std::nullopt;
-  return *end + cv::Point2d(window.tl());
+  for (cv::Point& p : end->pixels) p += window.tl();
+  end->centre += cv::Point2d(window.tl());
+  return end;
 }
 
 CfofFrame CameraTracker::frame(const cv::Mat& bgr, const cv::Mat& silhouette) const {
@@ -111,13 +100,16 @@ void CameraTracker::track(const cv::Mat& bgr, const cv::Mat& silhouette,
   }
   for (size_t i = 0; i < parts_.size(); ++i) {
     parts_[i].track(previous_, current, hidden[i]);
+    surface_[i].clear();
+    for (const cv::Point2f& f : parts_[i].selection()) surface_[i].emplace_back(f);
     // Two overlapping parts may share one blob; neither is anchored on it.
     if (!params_.anchor || overlapping[i] || parts_[i].state() != CfofState::tracking ||
         !pelvis_seen_) {
       continue;
     }
     if (const auto end = far_end(static_cast<Effector>(i), current, silhouette, root[i])) {
-      parts_[i].shift(*end - parts_[i].centre());
+      parts_[i].shift(end->centre - parts_[i].centre());
+      surface_[i] = end->pixels;
     }
   }
   previous_ = std::move(current);
@@ -135,9 +127,8 @@ CfofState CameraTracker::state(Effector e) const {
   return parts_[part_index(e)].state();
 }
 
-std::vector<cv::Point2f> CameraTracker::features(Effector e) const {
-  if (e == Effector::pelvis) return {};
-  return parts_[part_index(e)].selection();
+const std::vector<cv::Point>& CameraTracker::surface(Effector e) const {
+  return surface_[part_index(e)];
 }
 
 cv::Rect2d CameraTracker::roi(Effector e) const {

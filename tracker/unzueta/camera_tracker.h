@@ -10,6 +10,7 @@
 #include "tracker/unzueta/cfof.h"
 #include "tracker/unzueta/effectors.h"
 #include "tracker/unzueta/initial_regions.h"
+#include "tracker/unzueta/limb_end.h"
 #include "tracker/unzueta/pelvis_tracker.h"
 
 namespace simcap::tracker {
@@ -59,8 +60,9 @@ class CameraTracker {
   // The part's image position (the ROI centre; the pelvis from Alg. 6).
   cv::Point2d position(Effector e) const;
   CfofState state(Effector e) const;
-  // CFOF's selected features of a part (empty for the pelvis).
-  std::vector<cv::Point2f> features(Effector e) const;
+  // Pixels on a CFOF part in the last frame: its anchored end (CameraTrackerParams::anchor), or
+  // else CFOF's selected features. Not for the pelvis.
+  const std::vector<cv::Point>& surface(Effector e) const;
   cv::Rect2d roi(Effector e) const;
   double person_px() const { return person_px_; }
 
@@ -69,11 +71,12 @@ class CameraTracker {
   // Where the part is expected in the next frame, about its own size.
   cv::Rect2d part_box(const CfofTracker& t) const;
   // The far end of the part's coloured blob in its ROI (see CameraTrackerParams::anchor).
-  std::optional<cv::Point2d> far_end(Effector e, const CfofFrame& frame, const cv::Mat& silhouette,
-                                     std::optional<cv::Point2d> root) const;
+  std::optional<LimbEnd> far_end(Effector e, const CfofFrame& frame, const cv::Mat& silhouette,
+                                 std::optional<cv::Point2d> root) const;
   CameraTrackerParams params_;
   CfofParams cfof_;
   std::array<CfofTracker, kEffectorCount - 1> parts_;
+  std::array<std::vector<cv::Point>, kEffectorCount - 1> surface_;
   PelvisTracker pelvis_;
   cv::Point2d pelvis_position_;
   bool pelvis_seen_ = false;

@@ -5,10 +5,10 @@
 
 namespace simcap::tracker {
 
-std::optional<double> median_depth(const cv::Mat& depth, const std::vector<cv::Point2f>& points) {
+std::optional<double> median_depth(const cv::Mat& depth, const std::vector<cv::Point>& points) {
   std::vector<float> z;
-  for (const cv::Point2f& p : points) {
-    const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
+  for (const cv::Point& p : points) {
+    const int x = p.x, y = p.y;
     if (x < 0 || y < 0 || x >= depth.cols || y >= depth.rows) continue;
     const float d = depth.at<float>(y, x);
     if (std::isfinite(d) && d > 0) z.push_back(d);
@@ -18,14 +18,13 @@ std::optional<double> median_depth(const cv::Mat& depth, const std::vector<cv::P
   return z[z.size() / 2];
 }
 
-std::vector<cv::Point2f> mask_samples(const cv::Mat& mask, cv::Point2d centre, int half, int step) {
-  std::vector<cv::Point2f> out;
+std::vector<cv::Point> mask_samples(const cv::Mat& mask, cv::Point2d centre, int half, int step) {
+  std::vector<cv::Point> out;
   const int cx = static_cast<int>(std::lround(centre.x)),
             cy = static_cast<int>(std::lround(centre.y));
   for (int y = std::max(0, cy - half); y <= std::min(mask.rows - 1, cy + half); y += step) {
     for (int x = std::max(0, cx - half); x <= std::min(mask.cols - 1, cx + half); x += step) {
-      if (mask.at<unsigned char>(y, x))
-        out.emplace_back(static_cast<float>(x), static_cast<float>(y));
+      if (mask.at<unsigned char>(y, x)) out.emplace_back(x, y);
     }
   }
   return out;

@@ -13,10 +13,10 @@ namespace simcap::tracker {
 
 // Median of the finite values of `depth` (CV_32FC1, camera z in metres, +inf: nothing) at the
 // pixels nearest `points`; nullopt when none is finite.
-std::optional<double> median_depth(const cv::Mat& depth, const std::vector<cv::Point2f>& points);
+std::optional<double> median_depth(const cv::Mat& depth, const std::vector<cv::Point>& points);
 
 // Grid pixels of `mask` (CV_8UC1) within `half` px of `centre` (a square), every `step` px.
-std::vector<cv::Point2f> mask_samples(const cv::Mat& mask, cv::Point2d centre, int half, int step);
+std::vector<cv::Point> mask_samples(const cv::Mat& mask, cv::Point2d centre, int half, int step);
 
 // The world point seen at `pixel` whose camera z is `z`.
 Eigen::Vector3d point_at_depth(const Camera& camera, cv::Point2d pixel, double z);

@@ -8,9 +8,9 @@
 
 namespace simcap::tracker {
 
-std::optional<cv::Point2d> limb_end(const cv::Mat& part, const cv::Mat& body, cv::Point2d near,
-                                    double length, std::optional<cv::Point2d> root,
-                                    double root_tolerance) {
+std::optional<LimbEnd> limb_end(const cv::Mat& part, const cv::Mat& body, cv::Point2d near,
+                                double length, std::optional<cv::Point2d> root,
+                                double root_tolerance) {
   cv::Mat labels;
   if (cv::connectedComponents(part != 0, labels, 8, CV_32S) < 2) return std::nullopt;
   const int w = labels.cols, h = labels.rows;
@@ -86,15 +86,16 @@ std::optional<cv::Point2d> limb_end(const cv::Mat& part, const cv::Mat& body, cv
       }
     }
   }
+  LimbEnd end;
   cv::Point2d sum;
-  int n = 0;
   for (int i = 0; i < w * h; ++i) {
     if (dist[i] >= farthest - length && std::isfinite(dist[i])) {
-      sum += cv::Point2d(i % w, i / w);
-      ++n;
+      end.pixels.emplace_back(i % w, i / w);
+      sum += cv::Point2d(end.pixels.back());
     }
   }
-  return sum / n;
+  end.centre = sum / static_cast<double>(end.pixels.size());
+  return end;
 }
 
 }  // namespace simcap::tracker

@@ -4,6 +4,7 @@
 
 #include <opencv2/core.hpp>
 #include <optional>
+#include <vector>
 
 namespace simcap::tracker {
 
@@ -14,10 +15,15 @@ namespace simcap::tracker {
 // shoulder), only at the contacts within `root_tolerance` px of the one nearest it, so that a hand
 // lying on the thigh is not taken for the arm's start -- or, when it touches none, at the
 // window's border; geodesic distances (8-neighbour steps of 1 and sqrt 2, inside the blob) run
-// from there. Returns the mean of the blob pixels within `length` px of the largest distance
-// (window coordinates); nullopt when `part` is empty or nothing enters the blob.
-std::optional<cv::Point2d> limb_end(const cv::Mat& part, const cv::Mat& body, cv::Point2d near,
-                                    double length, std::optional<cv::Point2d> root = {},
-                                    double root_tolerance = 0);
+// from there. The part is the blob pixels within `length` px of the largest distance; returns
+// them and their mean (window coordinates); nullopt when `part` is empty or nothing enters the
+// blob.
+struct LimbEnd {
+  cv::Point2d centre;
+  std::vector<cv::Point> pixels;
+};
+std::optional<LimbEnd> limb_end(const cv::Mat& part, const cv::Mat& body, cv::Point2d near,
+                                double length, std::optional<cv::Point2d> root = {},
+                                double root_tolerance = 0);
 
 }  // namespace simcap::tracker

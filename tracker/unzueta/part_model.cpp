@@ -1,13 +1,25 @@
 #include "tracker/unzueta/part_model.h"
 
-#include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <string>
 
 #include "core/error.h"
 
 namespace simcap::tracker {
+namespace {
+
+// Enough vertices to average a part's surface; more only costs time every frame.
+constexpr size_t kMaxVertices = 400;
+
+}  // namespace
 
 PartModel::PartModel(const Skeleton& skeleton, const BodyMesh& mesh) {
+  // Skin vertices: those of a skin triangle (for the head, whose hair CFOF does not follow).
+  std::vector<bool> skin(mesh.vertices.size(), false);
+  for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (mesh.triangle_material[t] != MaterialRegion::skin) continue;
+    for (std::uint32_t v : mesh.triangles[t]) skin[v] = true;
+  }
   for (Effector e : kEffectors) {
     const int i = index_of(e);
     joint_[i] = skeleton.require(effector_joint(e));
@@ -16,13 +28,10 @@ PartModel::PartModel(const Skeleton& skeleton, const BodyMesh& mesh) {
       const std::string side = e == Effector::left_foot ? "l_" : "r_";
       segments.push_back(skeleton.require(side + "metatarsophalangeal_2"));
     }
-    if (e == Effector::pelvis) {
-      // The belly's and back's distance from the root: half the torso's depth at root height.
-      segments = {skeleton.require("sacroiliac"), joint_[i]};
-    }
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    if (e == Effector::pelvis) segments = {skeleton.require("sacroiliac"), joint_[i]};
     std::vector<Eigen::Vector3d> points;
     for (size_t v = 0; v < mesh.vertices.size(); ++v) {
+      if (e == Effector::head && !skin[v]) continue;
       for (int s : segments) {
         if (mesh.vertex_segment[v] == s) points.push_back(mesh.vertices[v].cast<double>());
       }
@@ -31,22 +40,32 @@ PartModel::PartModel(const Skeleton& skeleton, const BodyMesh& mesh) {
       throw Error("part model: the body mesh has no " + std::string(effector_name(e)) +
                   " vertices (segment of " + std::string(effector_joint(e)) + ")");
     }
-    for (const auto& p : points) sum += p;
-    const Eigen::Vector3d mean = sum / static_cast<double>(points.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const auto& p : points) cov += (p - mean) * (p - mean).transpose();
-    cov /= static_cast<double>(points.size());
-    const double smallest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov).eigenvalues()(0);
-    radius_[i] = std::sqrt(2.0 * std::max(smallest, 0.0));
-    offset_[i] = e == Effector::pelvis ? Eigen::Vector3d::Zero()
-                                       : Eigen::Vector3d(mean - skeleton[joint_[i]].center);
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& p : points) mean += p;
+    mean /= static_cast<double>(points.size());
+    const Eigen::Vector3d joint = skeleton[joint_[i]].center;
+    offset_[i] = e == Effector::pelvis ? Eigen::Vector3d::Zero() : Eigen::Vector3d(mean - joint);
+    const Eigen::Vector3d centre = joint + offset_[i];
+    const size_t step = (points.size() + kMaxVertices - 1) / kMaxVertices;
+    for (size_t k = 0; k < points.size(); k += step) vertices_[i].push_back(points[k] - centre);
   }
 }
 
-Eigen::Vector3d PartModel::centre(Effector e, const std::vector<Eigen::Quaterniond>& rotation,
-                                  const std::vector<Eigen::Vector3d>& position) const {
-  const int j = joint(e);
-  return position[j] + rotation[j] * centre_offset(e);
+double PartModel::depth_behind_surface(Effector e, const Eigen::Quaterniond& rotation,
+                                       const Eigen::Vector3d& ray, bool middle) const {
+  // The side facing the camera: vertices nearer than the centre along the ray.
+  const Eigen::Vector3d local = rotation.conjugate() * ray;
+  double sum = 0, weight = 0, deepest = 0;
+  for (const Eigen::Vector3d& v : vertices_[index_of(e)]) {
+    const double d = -v.dot(local);
+    if (d <= 0) continue;
+    const double w = d / std::max(v.norm(), 1e-9);
+    sum += w * d;
+    weight += w;
+    deepest = std::max(deepest, d);
+  }
+  if (middle) return deepest;
+  return weight > 0 ? sum / weight : 0.0;
 }
 
 Eigen::Vector3d PartModel::joint_from_centre(

@@ -23,11 +23,11 @@ enum class EffectorSource {
   mono,       // CFOF in one camera, each part at its starting depth: the thesis' "pseudo 3D"
   multiview,  // CFOF in every camera, triangulated
 };
-inline constexpr NameTable<EffectorSource, 4> kEffectorSources{{{"gt", EffectorSource::gt},
-                                                                {"depth", EffectorSource::depth},
-                                                                {"mono", EffectorSource::mono},
-                                                                {"multiview",
-                                                                 EffectorSource::multiview}}};
+inline constexpr NameTable<EffectorSource, 4> kEffectorSources{
+    {{"gt", EffectorSource::gt},
+     {"depth", EffectorSource::depth},
+     {"mono", EffectorSource::mono},
+     {"multiview", EffectorSource::multiview}}};
 
 struct SikTrackOptions {
   EffectorSource effectors = EffectorSource::gt;

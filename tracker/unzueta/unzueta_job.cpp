@@ -335,13 +335,16 @@ class Pipeline {
       }
       std::optional<double> z;
       if (s == CfofState::tracking) {
-        const std::vector<cv::Point2f> at =
+        const std::vector<cv::Point> at =
             e == Effector::pelvis ? mask_samples(images[0].silhouette, px,
                                                  static_cast<int>(kPelvisWindow * t.person_px()), 2)
-                                  : t.features(e);
+                                  : t.surface(e);
         z = median_depth(images[0].depth, at);
       }
-      out[i] = z ? centre_behind_surface(camera(c), px, *z, parts_->radius(e))
+      const Eigen::Vector3d ray = camera(c).unproject({px.x, px.y});
+      const double behind =
+          parts_->depth_behind_surface(e, rotation_[parts_->joint(e)], ray, e == Effector::pelvis);
+      out[i] = z ? centre_behind_surface(camera(c), px, *z, behind)
                  : point_at_depth(camera(c), px, camera(c).to_camera(centre_[i]).z());
     }
     return out;
@@ -390,13 +393,13 @@ class Pipeline {
 }  // namespace
 
 TrackSummary run_unzueta(const fs::path& dataset, const SikTrackOptions& options,
-                           const UnzuetaSink& sink) {
+                         const UnzuetaSink& sink) {
   Pipeline pipeline(dataset, options);
   return pipeline.run(sink);
 }
 
 TrackSummary track_dataset_unzueta(const fs::path& dataset, const fs::path& out,
-                                     const SikTrackOptions& options) {
+                                   const SikTrackOptions& options) {
   Pipeline pipeline(dataset, options);
   JointTrack track;
   track.joints = he15_joints();
@@ -406,7 +409,7 @@ TrackSummary track_dataset_unzueta(const fs::path& dataset, const fs::path& out,
   const Dataset ds(dataset);
   char line[256];
   TrackSummary s = pipeline.run([&](const UnzuetaFrame& f, const std::vector<int>& cameras,
-                                      const std::vector<CameraTracker>& trackers) {
+                                    const std::vector<CameraTracker>& trackers) {
     track.add_frame(f.frame, f.he15);
     for (Effector e : kEffectors) {
       const Eigen::Vector3d& x = f.target[index_of(e)];
