@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 
+#include "core/effector_track.h"
 #include "core/joint_track.h"
 #include "tracker/common/track_summary.h"
 #include "tracker/unzueta/camera_tracker.h"
@@ -29,16 +30,12 @@ using UnzuetaSink = std::function<void(const UnzuetaFrame&, const std::vector<in
 TrackSummary run_unzueta(const std::filesystem::path& dataset, const SikTrackOptions& options,
                          const UnzuetaSink& sink);
 
-// run_unzueta writing OUT/joints3d.csv (HE15), OUT/effectors2d.csv (per camera used, frame and
-// effector: the pixel of its joint as estimated, the tracked part's pixel and the tracker's state),
-// OUT/effectors3d.csv (SIK's targets) and OUT/diagnostics/sik_humanoid.csv.
+// run_unzueta writing OUT/joints3d.csv (HE15), OUT/effectors2d.csv (core/effector_track.h: per
+// camera used, frame and effector the pixel of its joint as estimated, the tracked part's pixel
+// and the tracker's state), OUT/effectors3d.csv (SIK's targets) and
+// OUT/diagnostics/sik_humanoid.csv.
 TrackSummary track_dataset_unzueta(const std::filesystem::path& dataset,
                                    const std::filesystem::path& out,
                                    const SikTrackOptions& options);
-
-// u, v: the joint's estimated pixel; part_u, part_v: the tracked part's image position (CFOF's
-// ROI centre, the pelvis of Alg. 6).
-inline const std::vector<std::string> kEffectors2dColumns = {
-    "frame", "camera", "effector", "joint", "u", "v", "part_u", "part_v", "state"};
 
 }  // namespace simcap::tracker
