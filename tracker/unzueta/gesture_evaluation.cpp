@@ -94,29 +94,29 @@ struct LimbClassifiers {
       model[l]->train(x[l], y[l]);
     }
   }
-  // Empty when the limb had no training samples.
+  // "unknown" when the limb had no training samples.
   std::string predict(int l, const Eigen::VectorXd& v) const {
     if (model[l]) return model[l]->predict(v);
-    return y[l].empty() ? std::string() : y[l][0];
+    return y[l].empty() ? std::string("unknown") : y[l][0];
   }
 };
 
 void add(Confusion& c, const std::string& truth, const std::string& predicted) {
+  for (const std::string* s : {&truth, &predicted}) {
+    const auto it = std::lower_bound(c.labels.begin(), c.labels.end(), *s);
+    if (it != c.labels.end() && *it == *s) continue;
+    const auto at = it - c.labels.begin();
+    c.labels.insert(it, *s);
+    for (auto& row : c.counts) row.insert(row.begin() + at, 0);
+    c.counts.insert(c.counts.begin() + at, std::vector<long>(c.labels.size(), 0));
+  }
   auto index = [&](const std::string& s) {
-    auto it = std::lower_bound(c.labels.begin(), c.labels.end(), s);
-    if (it == c.labels.end() || *it != s) {
-      const auto at = it - c.labels.begin();
-      c.labels.insert(it, s);
-      for (auto& row : c.counts) row.insert(row.begin() + at, 0);
-      c.counts.insert(c.counts.begin() + at, std::vector<long>(c.labels.size(), 0));
-    }
-    return std::lower_bound(c.labels.begin(), c.labels.end(), s) - c.labels.begin();
+    return static_cast<size_t>(std::lower_bound(c.labels.begin(), c.labels.end(), s) -
+                               c.labels.begin());
   };
-  const auto t = index(truth);
-  const auto p = index(predicted);
-  ++c.counts[static_cast<size_t>(t)][static_cast<size_t>(p)];
+  ++c.counts[index(truth)][index(predicted)];
   ++c.total;
-  if (t == p) ++c.correct;
+  if (truth == predicted) ++c.correct;
   c.accuracy = static_cast<double>(c.correct) / static_cast<double>(c.total);
 }
 

@@ -40,7 +40,8 @@ struct SpottedGesture {
   int first_frame = 0, last_frame = 0;
   std::string truth;  // label of the matched true gesture; empty for a false detection
   double iou = 0;
-  std::map<GestureClassifierKind, std::string> predicted;  // matched ones only
+  // Every spotted one; "unknown" when no other corpus has a gesture of this limb.
+  std::map<GestureClassifierKind, std::string> predicted;
 };
 
 struct Confusion {

@@ -7,10 +7,14 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 
 #include "models/humanoid.h"
 #include "tests/support/error_of.h"
+#include "tests/support/key_values.h"
+#include "tests/support/temp_dir.h"
 #include "tracker/unzueta/gesture_classifier.h"
 #include "tracker/unzueta/gesture_evaluation.h"
 #include "tracker/unzueta/gesture_normalization.h"
@@ -228,6 +232,60 @@ TEST(GestureEvaluation, TwoSyntheticSubjectsAreSpottedAndRecognised) {
   EXPECT_DOUBLE_EQ(r.poses.accuracy, 1.0);
   EXPECT_NE(testing::error_of([&] { evaluate_gestures({corpora[0]}, {}); }).find("two corpora"),
             std::string::npos);
+}
+
+TEST(GestureEvaluation, ALimbNoOtherSubjectUsedIsUnknown) {
+  const Skeleton s = build_humanoid(BodyParameters{});
+  GestureCorpus left = synthetic_subject(s, 1.0, 0.0, "left");
+  std::swap(left.signals.hand[0], left.signals.hand[1]);
+  for (auto& g : left.truth) g.limb = "l_hand";
+  const GestureResults r = evaluate_gestures({synthetic_subject(s, 1.0, 0.0, "right"), left}, {});
+  EXPECT_EQ(r.matched, 12);
+  const Confusion& c = r.recognition.at(GestureClassifierKind::knn);
+  EXPECT_EQ(c.total, 12);
+  EXPECT_EQ(c.correct, 0);
+  for (const auto& g : r.corpora[0].spotted) {
+    EXPECT_EQ(g.predicted.at(GestureClassifierKind::knn), "unknown");
+  }
+}
+
+// The command on two short renders of scenes/gestures.yaml scored on their truth: the last
+// line agrees with gestures.json; bad inputs are named.
+TEST(GesturesCommand, ScoresRenderedCorporaAndNamesBadInput) {
+  testing::TempDir tmp;
+  const std::string scene = std::string(SIMCAP_SOURCE_DIR) + "/scenes/gestures.yaml";
+  for (int seed : {1, 2}) {
+    const std::string ds = (tmp / ("g" + std::to_string(seed))).string();
+    ASSERT_EQ(testing::run_simcap("render " + scene + " -o " + ds + " --frames 450 --seed " +
+                                  std::to_string(seed) + " --set rig.resolution=[160,120] -q"),
+              0);
+  }
+  const std::string g1 = (tmp / "g1").string(), g2 = (tmp / "g2").string();
+  const std::string out = (tmp / "out").string();
+  std::string text;
+  ASSERT_EQ(testing::run_simcap(
+                "gestures " + g1 + " " + g1 + "/gt " + g2 + " " + g2 + "/gt -o " + out, &text),
+            0)
+      << text;
+  const auto fields = testing::key_values(testing::last_line(text));
+  ASSERT_TRUE(fields.contains("spotting_f1") && fields.contains("recognition_accuracy")) << text;
+  std::ifstream in(out + "/gestures.json");
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_NEAR(j["spotting"]["f1"].get<double>(), std::stod(fields.at("spotting_f1")), 1e-4);
+  EXPECT_EQ(j["spotting"]["truth_gestures"].get<int>(), 2);
+  EXPECT_TRUE(std::filesystem::exists(out + "/spotted.csv"));
+
+  EXPECT_EQ(testing::run_simcap("gestures " + g1 + " " + g1 + "/gt " + g2 + " -o " + out, &text),
+            1);
+  EXPECT_NE(text.find("DATASET TRACK pairs"), std::string::npos) << text;
+  EXPECT_EQ(testing::run_simcap("gestures " + g1 + " " + g1 + " " + g2 + " " + g2 + "/gt -o " + out,
+                                &text),
+            1);
+  EXPECT_NE(text.find("joints3d.csv"), std::string::npos) << text;
+  EXPECT_EQ(testing::run_simcap(
+                "gestures " + g1 + "/gt " + g1 + "/gt " + g2 + " " + g2 + "/gt -o " + out, &text),
+            1);
+  EXPECT_NE(text.find("gestures.csv"), std::string::npos) << text;
 }
 
 }  // namespace
