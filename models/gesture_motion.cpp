@@ -175,7 +175,7 @@ class Corpus {
       const double t = f / fps;
       while (k + 1 < moves_.size() && t > start + moves_[k].duration) start += moves_[k++].duration;
       const double local = std::min(t - start, moves_[k].duration);
-      motion.frames.push_back(pose(t, {moves_[k].hand[0](local), moves_[k].hand[1](local)}));
+      motion.frames.push_back(pose({moves_[k].hand[0](local), moves_[k].hand[1](local)}));
     }
     start = 0;
     for (const Move& m : moves_) {
@@ -306,13 +306,12 @@ class Corpus {
   }
 
   // The pose with the wrists at `hands` (body frame): arms by two-bone IK with the elbows out and
-  // down, feet apart, a slight sway.
-  Pose pose(double t, const std::array<Vec, 2>& hands) const {
+  // down, feet apart. The root does not sway: the legs have no IK, so the feet would slide.
+  Pose pose(const std::array<Vec, 2>& hands) const {
     Pose p = Pose::neutral(s_);
     const double abduction = 0.07;
     const double leg = (c(hip_[0]) - c(ankle_[0])).norm();
-    p.root_position =
-        c(root_) + Vec(0.008 * std::sin(2 * kPi * t / 5.0), -leg * (1 - std::cos(abduction)), 0);
+    p.root_position = c(root_) + Vec(0, -leg * (1 - std::cos(abduction)), 0);
     for (int side = 0; side < 2; ++side) {
       const double sign = side == 0 ? 1.0 : -1.0;
       p.rotations[hip_[side]] = Eigen::AngleAxisd(sign * abduction, Vec::UnitZ());
