@@ -201,25 +201,24 @@ class Pipeline {
     // Neutral rotations until the first solve.
     rotation_.assign(skeleton_.size(), Eigen::Quaterniond::Identity());
 
-    // The parts' first 3D centres.
-    if (options_.effectors == EffectorSource::mono) {
-      if (truth) {
-        const int ti = truth->frames.empty() || truth->frames.front() != f ? -1 : 0;
-        if (ti < 0) throw Error("--init gt: the ground truth has no frame " + std::to_string(f));
-        for (Effector e : kEffectors) {
-          const int j = truth->joint_index(std::string(effector_joint(e)));
-          if (j < 0)
-            throw Error("--init gt: the ground truth lacks " + std::string(effector_joint(e)));
-          centre_[index_of(e)] = truth->positions[ti][j] + parts_->centre_offset(e);
-        }
-      } else {
-        centre_ = posture;
+    // The parts' first 3D centres: with --init gt the truth's (the part labels give no 3D
+    // posture), else the calibration posture's.
+    if (truth) {
+      const int ti = truth->frames.empty() || truth->frames.front() != f ? -1 : 0;
+      if (ti < 0) throw Error("--init gt: the ground truth has no frame " + std::to_string(f));
+      for (Effector e : kEffectors) {
+        const int j = truth->joint_index(std::string(effector_joint(e)));
+        if (j < 0)
+          throw Error("--init gt: the ground truth lacks " + std::string(effector_joint(e)));
+        posture[index_of(e)] = truth->positions[ti][j] + parts_->centre_offset(e);
       }
+    }
+    centre_ = posture;
+    if (options_.effectors == EffectorSource::mono) {
       for (Effector e : kEffectors)
         mono_depth_[index_of(e)] = camera(cameras_[0]).to_camera(centre_[index_of(e)]).z();
     } else {
-      centre_ = posture;  // fallback for parts the first lift cannot see
-      centre_ = lift(images);
+      centre_ = lift(images);  // parts it cannot see keep the posture's centres
     }
     // The pelvis measurement's offset from the root joint.
     const Eigen::Vector3d pelvis = centre_[index_of(Effector::pelvis)];
