@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "models/bvh.h"
+#include "models/gesture_motion.h"
 #include "models/motion.h"
 #include "models/skeleton.h"
 
@@ -48,8 +49,9 @@ struct ArmSwingsSpec {
 struct ProceduralSpec {
   // One of: "stand" (neutral stance with slight sway), "tpose", "walk_in_place", "walk_path"
   // (walk along a circle of `path_radius`), "arm_raise" (both arms up and down), "turn" (a turn
-  // on the spot), or an action: "jumps", "turnaround", "squat", "arms_cross", "side_steps",
-  // "bend_forward", "kick", "arm_swings" (models/procedural_actions.h).
+  // on the spot), an action: "jumps", "turnaround", "squat", "arms_cross", "side_steps",
+  // "bend_forward", "kick", "arm_swings" (models/procedural_actions.h), or "gestures" (the
+  // gesture corpus of models/gesture_motion.h; `duration_s` is then the corpus' own length).
   std::string kind = "walk_path";
   double duration_s = 4.0;
   double speed_m_s = 1.2;    // walking speed (walk_path) or step rate scale (walk_in_place)
@@ -66,6 +68,7 @@ struct ProceduralSpec {
   BendForwardSpec bend_forward{};
   KickSpec kick{};
   ArmSwingsSpec arm_swings{};
+  GestureSpec gestures{};  // gestures
 };
 
 struct MotionSource {

@@ -221,6 +221,7 @@ const std::vector<std::string>& procedural_kinds() {
     std::vector<std::string> k = {"stand",     "tpose", "walk_in_place", "walk_path",
                                   "arm_raise", "turn",  "turnaround"};
     k.insert(k.end(), action_kinds().begin(), action_kinds().end());
+    k.push_back("gestures");
     return k;
   }();
   return kinds;
@@ -230,6 +231,7 @@ Motion generate_procedural(const ProceduralSpec& spec, const Skeleton& skeleton,
   if (!(fps > 0) || !std::isfinite(fps)) {
     throw Error("procedural motion: frame rate must be positive, got " + std::to_string(fps));
   }
+  if (spec.kind == "gestures") return generate_gestures(spec.gestures, skeleton, fps);
   if (!(spec.duration_s >= 0) || !std::isfinite(spec.duration_s)) {
     throw Error("procedural motion: duration_s must be zero or positive");
   }

@@ -53,9 +53,18 @@ struct Light {
   std::vector<LightKeyframe> keyframes;  // in time order; empty: the light never changes
 };
 
+// A subject drawn from the render seed (resolve_seeded_choices): the height moves uniformly by up
+// to +-height metres; each segment length and breadth (upper arm, forearm, hand, foot, shoulder
+// and hip widths) and the leg's share of the height by up to +-proportions of itself.
+struct BodyVariation {
+  double height = 0.0;
+  double proportions = 0.0;
+};
+
 struct Actor {
   std::string name = "actor0";
   BodySource body;  // simcap's humanoid (parameters, shape) or a body file
+  BodyVariation vary;  // per-seed variation of the humanoid (scenes/seeded_choices.cpp)
   std::array<Rgb, kMaterialRegionCount> colors = {
       Rgb{0.85f, 0.66f, 0.53f}, Rgb{0.20f, 0.35f, 0.65f}, Rgb{0.25f, 0.25f, 0.30f},
       Rgb{0.10f, 0.10f, 0.10f}, Rgb{0.25f, 0.17f, 0.10f}};  // skin, shirt, trousers, shoes, hair
@@ -106,6 +115,11 @@ Scene load_scene(const std::filesystem::path& path, const std::vector<std::strin
 // gives the same scene back.
 std::string scene_to_yaml(const Scene& scene);
 
+// Fixes what the scene leaves to the render seed: each actor's body within its `vary` ranges
+// (drawn from render.seed and the actor's index; `vary` is then cleared) and a gesture corpus'
+// seed 0 (it becomes render.seed). The renderer calls it after --seed, so that the dataset's
+// scene.yaml states the subject and corpus it shows.
+void resolve_seeded_choices(Scene& scene);
 // Where an actor's motion is put in the room: every pose (root path and joints, in the motion's
 // own frame) is rotated by yaw_rad about the world +Y axis through the origin, then moved by
 // offset: world = placement * motion point.

@@ -378,6 +378,39 @@ void read_action_keys(ProceduralSpec& p, const Take& take) {
   }
 }
 
+namespace {
+
+// The keys of a gesture corpus (models/gesture_motion.h), known only for `procedural: gestures`.
+void read_gestures(Map& m, GestureSpec& g) {
+  g.seed = 0;  // the render seed (resolve_seeded_choices)
+  if (auto v = m.take("gestures")) {
+    g.gestures.clear();
+    for (const Field& item : v->items(1, 1000)) {
+      const std::string name = item.text();
+      const auto& known = gesture_kinds();
+      if (std::find(known.begin(), known.end(), name) == known.end()) {
+        item.expected("one of " + scene_names::one_of(known));
+      }
+      g.gestures.push_back(name);
+    }
+  }
+  if (auto v = m.take("repetitions")) g.repetitions = v->integer(1, 1000);
+  if (auto v = m.take("seed")) g.seed = v->unsigned64();
+  auto range = [&](const char* key, double& lo, double& hi, double most) {
+    if (auto v = m.take(key)) {
+      const auto items = v->items(2, 2);
+      lo = items[0].number(yaml::positive(most));
+      hi = items[1].number(yaml::positive(most));
+      if (hi < lo) items[1].expected("a number >= the first (" + yaml::format_number(lo) + ")");
+    }
+  };
+  range("gesture_speed", g.min_speed, g.max_speed, 10);
+  range("gesture_size", g.min_size, g.max_size, 2);
+  if (auto v = m.take("transition_speed")) g.transition_speed = v->number(yaml::positive(10));
+}
+
+}  // namespace
+
 MotionSource SceneReader::read_motion(const Field& f) const {
   Map m(f);
   MotionSource src;
@@ -423,6 +456,7 @@ MotionSource SceneReader::read_motion(const Field& f) const {
     if (auto v = m.take("radius")) p.path_radius = v->number(yaml::positive(100));
     if (auto v = m.take("turn_deg")) p.turn_degrees = v->number(yaml::closed(-3600, 3600));
     read_action_keys(p, take);
+    if (p.kind == "gestures") read_gestures(m, p.gestures);
     if (const auto problem = procedural::parameter_problem(p)) {
       const auto at = given.find(problem->key);
       (at != given.end() ? at->second : f)
@@ -467,16 +501,22 @@ Actor SceneReader::read_actor(const Field& f, int index) const {
   if (auto v = m.take("name")) a.name = v->text();
   if (auto v = m.take("body")) {
     read_body_file(*v, a.body);
-    for (const char* key : {"height", "girth", "proportions"}) {
+    for (const char* key : {"height", "girth", "proportions", "vary"}) {
       if (auto x = m.take(key)) {
-        x->fail("the body comes from a file (" + v->path() + "); height, girth and proportions " +
-                "shape simcap's own humanoid only");
+        x->fail("the body comes from a file (" + v->path() + "); height, girth, proportions and " +
+                "vary shape simcap's own humanoid only");
       }
     }
   }
   BodyParameters& body = a.body.parameters;
   if (auto v = m.take("height")) body.height = v->number(yaml::closed(0.5, 2.5));
   if (auto v = m.take("girth")) a.body.shape.girth = v->number(yaml::closed(0.5, 2.0));
+  if (auto v = m.take("vary")) {
+    Map p(*v);
+    if (auto x = p.take("height")) a.vary.height = x->number(yaml::closed(0.0, 0.5));
+    if (auto x = p.take("proportions")) a.vary.proportions = x->number(yaml::closed(0.0, 0.1));
+    p.finish();
+  }
   if (auto v = m.take("proportions")) {
     Map p(*v);
     for (const auto& [key, member] : scene_names::kProportions) {

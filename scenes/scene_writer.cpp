@@ -159,6 +159,19 @@ void write_motion(YAML::Emitter& out, const MotionSource& m) {
     number(out, "radius", m.procedural.path_radius);
     number(out, "turn_deg", m.procedural.turn_degrees);
     write_action_keys(out, m.procedural);
+    if (m.procedural.kind == "gestures") {
+      const GestureSpec& g = m.procedural.gestures;
+      out << YAML::Key << "gestures" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+      for (const std::string& name : g.gestures.empty() ? gesture_kinds() : g.gestures) out << name;
+      out << YAML::EndSeq;
+      out << YAML::Key << "repetitions" << YAML::Value << std::to_string(g.repetitions);
+      out << YAML::Key << "seed" << YAML::Value << std::to_string(g.seed);
+      out << YAML::Key << "gesture_speed" << YAML::Value << YAML::Flow << YAML::BeginSeq
+          << yaml::format_number(g.min_speed) << yaml::format_number(g.max_speed) << YAML::EndSeq;
+      out << YAML::Key << "gesture_size" << YAML::Value << YAML::Flow << YAML::BeginSeq
+          << yaml::format_number(g.min_size) << yaml::format_number(g.max_size) << YAML::EndSeq;
+      number(out, "transition_speed", g.transition_speed);
+    }
   }
   out << YAML::EndMap;
 }
@@ -183,6 +196,12 @@ void write_actor(YAML::Emitter& out, const Actor& a) {
   } else {
     number(out, "height", a.body.parameters.height);
     number(out, "girth", a.body.shape.girth);
+    if (a.vary.height > 0 || a.vary.proportions > 0) {
+      out << YAML::Key << "vary" << YAML::Value << YAML::BeginMap;
+      number(out, "height", a.vary.height);
+      number(out, "proportions", a.vary.proportions);
+      out << YAML::EndMap;
+    }
     out << YAML::Key << "proportions" << YAML::Value << YAML::BeginMap;
     for (const auto& [key, member] : scene_names::kProportions) {
       number(out, key, a.body.parameters.proportions.*member);

@@ -143,6 +143,24 @@ std::vector<PosedActor> AnimatedActors::posed_at(int frame, double dt_s) const {
   return out;
 }
 
+std::vector<ActorLabel> AnimatedActors::labels(int frames) const {
+  std::vector<ActorLabel> out;
+  for (size_t a = 0; a < group_of_.size(); ++a) {
+    const Group& g = *groups_[group_of_[a]];
+    // Motion frame k plays at scene frame start_frame + k, shown by dataset frame
+    // start_frame + k - first_frame.
+    const long shift = g.start_frame - first_frame_;
+    for (const MotionLabel& l : g.motion.labels) {
+      const long first = std::lround(std::ceil(l.start_s * fps_ - 1e-9)) + shift;
+      const long last = std::lround(std::floor(l.end_s * fps_ + 1e-9)) + shift;
+      if (last < 0 || first >= frames || last < first) continue;
+      out.push_back({static_cast<int>(a), static_cast<int>(std::max(first, 0L)),
+                     static_cast<int>(std::min<long>(last, frames - 1)), l});
+    }
+  }
+  return out;
+}
+
 PosedActor AnimatedActors::posed_actor_at(int actor, int frame, double dt_s) const {
   return place(actor, local_pose(*groups_[group_of_.at(actor)], frame, dt_s));
 }

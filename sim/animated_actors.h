@@ -28,6 +28,13 @@ struct PosedActor {
   const std::vector<BodyPoint>* h36m17 = nullptr;
 };
 
+// A labelled stretch of an actor's motion (a gesture corpus' gestures), in dataset frames.
+struct ActorLabel {
+  int actor = 0;
+  int first_frame = 0, last_frame = 0;  // inclusive
+  MotionLabel label;
+};
+
 class AnimatedActors {
  public:
   // Builds every actor's skeleton, body and motion (at the scene's frame rate). Motion files
@@ -53,6 +60,9 @@ class AnimatedActors {
   // posed() is not changed; the caller commits.
   void pose_bodies_over(int frame, double begin_s, double end_s);
   const std::vector<PosedActor>& posed() const { return posed_; }
+  // The labels of every actor's motion that fall in dataset frames [0, frames), clipped to
+  // them, by actor then start.
+  std::vector<ActorLabel> labels(int frames) const;
   // Number of distinct skinned bodies (fewer than actors when actors share one).
   int body_count() const { return static_cast<int>(groups_.size()); }
 

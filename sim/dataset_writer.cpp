@@ -10,6 +10,7 @@
 #include "core/blender_cameras.h"
 #include "core/calibration.h"
 #include "core/colmap_model.h"
+#include "core/gesture_table.h"
 #include "core/image_io.h"
 #include "core/joint_track.h"
 #include "core/toml_calibration.h"
@@ -100,6 +101,17 @@ void DatasetWriter::write_fixed_files(const Scene& scene, const Skeleton& skelet
         {{"label", j + 1}, {"segment", skeleton[j].segment}, {"joint", skeleton[j].name}});
   }
   write_text_atomic(root_ / "parts.json", parts.dump(2) + "\n");
+}
+
+void DatasetWriter::write_gestures(const std::vector<ActorLabel>& labels,
+                                   const std::vector<PosedActor>& actors) const {
+  if (labels.empty()) return;
+  CsvWriter csv(root_ / "gt" / "gestures.csv", kGesturesColumns);
+  for (const ActorLabel& l : labels) {
+    csv.out() << actors.at(l.actor).name << ',' << l.label.limb << ',' << l.label.kind << ','
+              << l.label.label << ',' << l.first_frame << ',' << l.last_frame << '\n';
+  }
+  csv.commit();
 }
 
 void DatasetWriter::write_backgrounds(const std::vector<RenderedView>& views) const {

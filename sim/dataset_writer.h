@@ -13,6 +13,7 @@
 #include "core/image_io.h"
 #include "scenes/scene.h"
 #include "sim/coco_keypoints.h"
+#include "sim/animated_actors.h"
 #include "sim/ground_truth.h"
 #include "sim/mask_boxes.h"
 #include "sim/renderer.h"
@@ -50,6 +51,10 @@ class DatasetWriter {
   // `boxes`: each actor's box in each camera's mask of the frame, [camera][actor].
   void append_truth(const FrameTruth& truth, const std::vector<std::vector<MaskBox>>& boxes);
   // Publishes the tables; until then they exist only under temporary names.
+  // gt/gestures.csv: actor,limb,kind,label,first_frame,last_frame per labelled stretch of a
+  // motion (models/motion.h MotionLabel; frames inclusive). Not written when there are none.
+  void write_gestures(const std::vector<ActorLabel>& labels,
+                      const std::vector<PosedActor>& actors) const;
   void commit_truth();
 
   // Removes temporary files an interrupted render left behind (AtomicFile's ".<name>.tmp*").

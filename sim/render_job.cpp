@@ -81,6 +81,7 @@ Scene load_for_render(const fs::path& scene_file, const RenderOptions& options) 
   if (!fs::exists(scene_file)) throw Error(scene_file.string() + ": scene file not found");
   Scene scene = load_scene(scene_file, options.overrides);
   if (options.seed) scene.render.seed = *options.seed;
+  resolve_seeded_choices(scene);
   if (!options.motion_override.empty()) {
     if (!fs::is_regular_file(options.motion_override)) {
       throw Error(options.motion_override.string() + ": motion file not found (--motion)");
@@ -311,6 +312,7 @@ RenderSummary render_dataset(const fs::path& scene_file, const fs::path& out_dir
   meta["complete"] = false;
   write_text_atomic(out_dir / "meta.json", meta.dump(2) + "\n");
   writer.write_fixed_files(scene, *setup.actors().posed().at(0).skeleton);
+  writer.write_gestures(setup.actors().labels(frames), setup.actors().posed());
   if (!(options.resume && writer.backgrounds_complete())) {
     writer.write_backgrounds(setup.render_background());
   }

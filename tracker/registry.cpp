@@ -16,14 +16,17 @@ TrackSummary run_moschini_family(const fs::path& dataset, const fs::path& out,
                                  const TrackOptions& o) {
   MoschiniOptions m = o.moschini;
   m.init = o.init;
+  m.silhouettes = o.silhouettes;
   m.quiet = o.quiet;
   return track_moschini(dataset, out, m);
 }
 
 TrackSummary run_sik_family(const fs::path& dataset, const fs::path& out, const TrackOptions& o) {
   SikTrackOptions s = o.sik;
+  s.init = o.init;
+  s.silhouettes = o.silhouettes;
   s.quiet = o.quiet;
-  return track_dataset_sik(dataset, out, s);
+  return track_sik(dataset, out, s);
 }
 
 constexpr std::array kFamilies{
@@ -34,16 +37,22 @@ constexpr std::array kFamilies{
                     // colour frames.
                     DatasetNeeds n;
                     n.min_cameras = 2;
-                    n.colour = o.moschini.silhouettes != SilhouetteMethod::gt;
+                    n.colour = o.silhouettes != SilhouetteMethod::gt;
                     return n;
                   },
                   run_moschini_family},
     TrackerFamily{TrackMethod::sik,
-                  "sequential inverse kinematics on the ground truth's end-effectors (Unzueta "
-                  "2009)",
-                  [](const TrackOptions&) {
+                  "sequential inverse kinematics on end-effectors, from the ground truth or "
+                  "tracked in the images (Unzueta 2009)",
+                  [](const TrackOptions& o) {
+                    // From pixels: colour frames (CFOF), depth maps for depth, two views to
+                    // triangulate; the ground truth for gt effectors or the first frame's parts.
                     DatasetNeeds n;
-                    n.ground_truth = true;
+                    const EffectorSource e = o.sik.effectors;
+                    n.ground_truth = e == EffectorSource::gt || o.init == InitMethod::gt;
+                    n.colour = e != EffectorSource::gt;
+                    n.depth = e == EffectorSource::depth;
+                    n.min_cameras = e == EffectorSource::multiview ? 2 : 1;
                     return n;
                   },
                   run_sik_family},

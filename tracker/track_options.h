@@ -18,6 +18,7 @@ struct TrackOptions {
   TrackMethod method = TrackMethod::moschini;
   // Options every family shares; the registry hands them to the family that runs.
   InitMethod init = InitMethod::gt;
+  SilhouetteMethod silhouettes = SilhouetteMethod::gt;  // moschini; sik from pixels (pelvis)
   bool quiet = false;
   // Formats the track's motion is also written in (TRACK/motion.bvh, motion.x3d).
   std::vector<MotionExport> exports;

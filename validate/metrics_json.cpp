@@ -28,6 +28,15 @@ Json group_json(const VisibilityGroup& g, const char* key) {
   return j;
 }
 
+Json pixels_json(const PixelErrors& p) {
+  if (p.count == 0) return {{"count", 0}};
+  return {{"count", p.count},
+          {"median_px", mm(p.median_px)},
+          {"mean_px", mm(p.mean_px)},
+          {"p90_px", mm(p.p90_px)},
+          {"max_px", mm(p.max_px)}};
+}
+
 }  // namespace
 
 Json metrics_to_json(const Evaluation& ev, const std::string& dataset, const std::string& track) {
@@ -101,6 +110,29 @@ Json metrics_to_json(const Evaluation& ev, const std::string& dataset, const std
         {{"first_frame", e.first_frame}, {"frames", e.frames}, {"recovered", e.recovered}});
   }
   j["failures"] = fj;
+  return j;
+}
+
+Json effector_scores_json(const std::optional<EffectorScores>& scores) {
+  if (!scores) return nullptr;
+  Json j;
+  j["effector_frames"] = scores->frames;
+  j["lost"] = scores->lost;
+  j["lost_fraction"] = unit(scores->lost_fraction);
+  j["all"] = pixels_json(scores->all);
+  j["visible"] = pixels_json(scores->visible);
+  j["self_occluded"] = pixels_json(scores->self_occluded);
+  j["per_effector"] = Json::array();
+  for (const auto& e : scores->per_effector) {
+    j["per_effector"].push_back({{"camera", e.camera},
+                                 {"effector", e.effector},
+                                 {"joint", e.joint},
+                                 {"frames", e.frames},
+                                 {"lost", e.lost},
+                                 {"all", pixels_json(e.all)},
+                                 {"visible", pixels_json(e.visible)},
+                                 {"self_occluded", pixels_json(e.self_occluded)}});
+  }
   return j;
 }
 

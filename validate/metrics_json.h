@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "validate/effector_scores.h"
 #include "validate/evaluation.h"
 
 namespace simcap {
@@ -17,5 +18,8 @@ inline constexpr const char* kMetricsSchema = "simcap-metrics/1";
 // and stays byte-identical across runs.
 nlohmann::ordered_json metrics_to_json(const Evaluation& ev, const std::string& dataset,
                                        const std::string& track);
+
+// The "effectors2d" member: the 2D end-effector scores, or null when the track has none.
+nlohmann::ordered_json effector_scores_json(const std::optional<EffectorScores>& scores);
 
 }  // namespace simcap

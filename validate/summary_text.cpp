@@ -37,4 +37,14 @@ std::string metrics_summary_text(const Evaluation& ev) {
   return s;
 }
 
+std::string effector_summary_text(const EffectorScores& scores) {
+  std::string s;
+  line(s, "2D end-effectors, median error", "%.1f", scores.all.median_px, "px");
+  if (scores.self_occluded.count > 0) {
+    line(s, "2D end-effectors, self-occluded", "%.1f", scores.self_occluded.median_px, "px");
+  }
+  line(s, "2D end-effectors, lost", "%.2f", 100.0 * scores.lost_fraction, "%");
+  return s;
+}
+
 }  // namespace simcap

@@ -140,6 +140,9 @@ ValidateSummary validate_dataset(const fs::path& dataset, const fs::path& track,
   ValidateSummary summary;
   summary.evaluation = evaluate(in.evaluation, eval_options);
   const Evaluation& ev = summary.evaluation;
+  std::vector<std::string> camera_names;
+  for (const Camera& c : in.cameras) camera_names.push_back(c.name);
+  summary.effectors = score_effector_tracks(dataset, track, ev.frames, camera_names);
 
   ReportContent content{dataset.string(), track.string(), {}, {}, {}};
   if (options.media) {
@@ -163,6 +166,7 @@ ValidateSummary validate_dataset(const fs::path& dataset, const fs::path& track,
   summary.video_note = content.video_note;
 
   nlohmann::ordered_json json = metrics_to_json(ev, dataset.string(), track.string());
+  json["effectors2d"] = effector_scores_json(summary.effectors);
   json["media"] = {
       {"overlay_frames", nlohmann::ordered_json::array()},
       {"video", content.video_file.empty() ? nlohmann::ordered_json(nullptr)

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "validate/effector_scores.h"
 #include "validate/evaluation.h"
 
 namespace simcap {
@@ -21,12 +22,14 @@ struct ValidateOptions {
 
 struct ValidateSummary {
   Evaluation evaluation;
+  std::optional<EffectorScores> effectors;  // when the track has effectors2d.csv
   std::filesystem::path metrics_json, report_html;
   std::filesystem::path video;  // empty when no video was written
   std::string video_note;       // what the video shows, or why there is none
 };
 
-// Reads DATASET and TRACK (see validation_inputs.h), writes the report into `out`.
+// Reads DATASET and TRACK (see validation_inputs.h; and TRACK/effectors2d.csv when there is one),
+// writes the report into `out`.
 ValidateSummary validate_dataset(const std::filesystem::path& dataset,
                                  const std::filesystem::path& track,
                                  const std::filesystem::path& out, const ValidateOptions& options);

@@ -22,6 +22,7 @@ int run_validate(const ValidateArgs& args) {
   const ValidateSummary s = validate_dataset(args.dataset, args.track, args.out, options);
   std::printf("simcap validate: %s against %s\n%s", args.track.string().c_str(),
               args.dataset.string().c_str(), metrics_summary_text(s.evaluation).c_str());
+  if (s.effectors) std::printf("%s", effector_summary_text(*s.effectors).c_str());
   std::printf("report: %s\nmetrics: %s\n", s.report_html.string().c_str(),
               s.metrics_json.string().c_str());
   return fail_above_status("validate", s.evaluation.mpjpe_mm, args.scoring.fail_above_mm);

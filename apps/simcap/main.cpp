@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   add_model(app, action);
   add_motion(app, action);
   add_ik_eval(app, action);
+  add_gestures(app, action);
   add_export(app, action);
   add_collect(app, action);
   add_version(app, action);

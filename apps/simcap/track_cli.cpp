@@ -12,7 +12,7 @@ namespace simcap::cli {
 namespace {
 
 // Sweep keys and the options they set (sweep files name the voxel and noise with their unit).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 11> kSweepKeys{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 13> kSweepKeys{{
     {"method", "--method"},
     {"silhouettes", "--silhouettes"},
     {"init", "--init"},
@@ -22,6 +22,8 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 11> kSweepKe
     {"traversal", "--traversal"},
     {"occlusion", "--occlusion"},
     {"voxel_m", "--voxel"},
+    {"effectors", "--effectors"},
+    {"camera", "--camera"},
     {"sik_noise_m", "--sik-noise"},
     {"seed", "--seed"},
 }};
@@ -41,12 +43,13 @@ std::string method_help() {
 void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope scope) {
   using namespace tracker;
   add_choice(cmd, "--method", o.method, kTrackMethods, method_help());
-  add_choice(cmd, "--silhouettes", o.moschini.silhouettes, kSilhouetteMethods,
-             "Silhouettes: gt (the dataset's masks), bgsub (Gaussian background model), mog2 "
-             "(OpenCV MOG2)");
+  add_choice(cmd, "--silhouettes", o.silhouettes, kSilhouetteMethods,
+             "Silhouettes (moschini; sik from pixels, for the pelvis): gt (the dataset's masks), "
+             "bgsub (Gaussian background model), mog2 (OpenCV MOG2)");
   add_choice(cmd, "--init", o.init, kInitMethods,
-             "First pose: gt (ground truth of the first frame) or auto (the hull of a person "
-             "standing upright)");
+             "First pose: gt (ground truth of the first frame; sik from pixels: the part labels "
+             "and the truth's body) or auto (moschini: the hull of a person standing upright; "
+             "sik: the calibration posture, hands raised beside the head, facing the camera)");
   cmd->add_option("--voxel", o.moschini.voxel_m, "moschini: visual hull voxel size, metres")
       ->check(CLI::Range(0.005, 0.2))
       ->capture_default_str();
@@ -73,6 +76,15 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
   cmd->add_flag("--oracle", o.moschini.oracle,
                 "moschini: start every frame from its ground-truth pose (a diagnostic: the error "
                 "left is the body model's and the cues', not the search's)");
+  add_choice(cmd, "--effectors", o.sik.effectors, kEffectorSources,
+             "sik: where the end-effectors come from: gt (the ground truth), depth (tracked in "
+             "one camera, lifted by its depth map), mono (one camera, pseudo-3D), multiview (every "
+             "camera, triangulated)");
+  cmd->add_option("--camera", o.sik.camera,
+                  "sik --effectors depth|mono: index of the camera (calibration order); "
+                  "multiview: the camera whose calibration posture starts the others")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_option("--sik-noise", o.sik.noise_sigma_m,
                   "sik: standard deviation of the noise added to the end-effectors, metres")
       ->check(CLI::Range(0.0, 1.0))
@@ -134,7 +146,9 @@ std::string track_options_text(const tracker::TrackOptions& o) {
   using namespace tracker;
   std::string s(name_of(kTrackMethods, o.method));
   if (o.method == TrackMethod::moschini) {
-    s += ", silhouettes " + std::string(name_of(kSilhouetteMethods, o.moschini.silhouettes));
+    s += ", silhouettes " + std::string(name_of(kSilhouetteMethods, o.silhouettes));
+  } else {
+    s += ", effectors " + std::string(name_of(kEffectorSources, o.sik.effectors));
   }
   return s + ", init " + std::string(name_of(kInitMethods, o.init));
 }

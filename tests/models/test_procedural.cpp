@@ -43,7 +43,11 @@ TEST(Procedural, EveryKindIsDeterministicWithTheRequestedLength) {
   for (const auto& kind : procedural_kinds()) {
     const Motion a = make(kind, 6.0, 10.0);
     const Motion b = make(kind, 6.0, 10.0);
-    ASSERT_EQ(a.frames.size(), 61u) << kind;
+    // The gesture corpus has its own length (models/gesture_motion.h).
+    if (kind != "gestures") {
+      ASSERT_EQ(a.frames.size(), 61u) << kind;
+    }
+    ASSERT_EQ(a.frames.size(), b.frames.size()) << kind;
     EXPECT_DOUBLE_EQ(a.fps, 10.0);
     for (size_t f = 0; f < a.frames.size(); ++f) {
       EXPECT_EQ(a.frames[f].root_position, b.frames[f].root_position) << kind;

@@ -12,6 +12,7 @@
 #include "models/body_mesh.h"
 #include "models/humanoid.h"
 #include "tracker/unzueta/sik.h"
+#include "tracker/unzueta/unzueta_job.h"
 
 namespace simcap {
 namespace {
@@ -168,6 +169,12 @@ TrackSummary track_dataset_sik(const std::filesystem::path& dataset,
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   summary.track = out;
   return summary;
+}
+
+TrackSummary track_sik(const std::filesystem::path& dataset, const std::filesystem::path& out,
+                       const SikTrackOptions& options) {
+  if (options.effectors == EffectorSource::gt) return track_dataset_sik(dataset, out, options);
+  return tracker::track_dataset_unzueta(dataset, out, options);
 }
 
 }  // namespace simcap

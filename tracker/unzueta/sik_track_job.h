@@ -1,21 +1,52 @@
-// `simcap track --method sik`: SIK on a dataset's ground-truth end-effectors (optionally noisy),
-// writing the HE15 joints of the solved humanoid to TRACK/joints3d.csv.
+// `simcap track --method sik`: SIK on a dataset's end-effectors -- the ground truth's (optionally
+// noisy), or tracked from the pixels (unzueta_job.h) -- writing the solved humanoid's HE15 joints.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 
 #include "core/joint_track.h"
+#include "core/name_table.h"
 #include "models/skeleton.h"
+#include "tracker/common/init_method.h"
+#include "tracker/common/silhouettes.h"
 #include "tracker/common/track_summary.h"
+#include "tracker/unzueta/camera_tracker.h"
+#include "tracker/unzueta/sik_pelvis.h"
 
 namespace simcap {
 
+// Where SIK's end-effector targets come from.
+enum class EffectorSource {
+  gt,         // the ground truth's joints (plus noise_sigma_m)
+  depth,      // CFOF in one camera, lifted by its depth map: the thesis' "full 3D"
+  mono,       // CFOF in one camera, each part at its starting depth: the thesis' "pseudo 3D"
+  multiview,  // CFOF in every camera, triangulated
+};
+inline constexpr NameTable<EffectorSource, 4> kEffectorSources{
+    {{"gt", EffectorSource::gt},
+     {"depth", EffectorSource::depth},
+     {"mono", EffectorSource::mono},
+     {"multiview", EffectorSource::multiview}}};
+
 struct SikTrackOptions {
-  double noise_sigma_m = 0.0;
-  std::uint64_t seed = 1;
+  EffectorSource effectors = EffectorSource::gt;
+  double noise_sigma_m = 0.0;  // gt
+  std::uint64_t seed = 1;      // gt: seed of that noise
+  // From pixels: the first frame's ROIs and body from the ground truth (gt) or the calibration
+  // posture (automatic); which silhouettes the pelvis comes from; the camera of depth and mono.
+  tracker::InitMethod init = tracker::InitMethod::automatic;
+  tracker::SilhouetteMethod silhouettes = tracker::SilhouetteMethod::gt;
+  int camera = 0;
+  tracker::CameraTrackerParams tracking;
+  SikPelvisWeights pelvis_weights;
+  int max_frames = -1;  // from pixels: < 0 tracks every frame
   bool quiet = false;
 };
+
+// The family's entry point: track_dataset_sik for gt, else tracker::track_dataset_unzueta.
+TrackSummary track_sik(const std::filesystem::path& dataset, const std::filesystem::path& out,
+                       const SikTrackOptions& options);
 
 // Reads DATASET/gt/joints3d.csv; needs humanoid_root, skullbase (or skull_tip), l/r_radiocarpal
 // and l/r_talocrural. Solves every frame in order with SIK (limits and collisions on, floor

@@ -1,0 +1,292 @@
+// Unzueta's gesture chapter against independent references: spotting on synthetic pseudo-energy
+// with known intervals (Alg. 14 worked by hand), the clamped spline against a hand computation
+// and linear data, normalisation invariances, K-NN against brute force on a tiny set, the pelvis
+// frame's invariance to the body's heading, and a whole leave-one-subject-out run on two
+// synthetic subjects.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "models/humanoid.h"
+#include "tests/support/error_of.h"
+#include "tests/support/key_values.h"
+#include "tests/support/temp_dir.h"
+#include "tracker/unzueta/gesture_classifier.h"
+#include "tracker/unzueta/gesture_evaluation.h"
+#include "tracker/unzueta/gesture_normalization.h"
+#include "tracker/unzueta/gesture_signals.h"
+#include "tracker/unzueta/gesture_spotting.h"
+
+namespace simcap::tracker {
+namespace {
+
+std::vector<double> pulses(int n, const std::vector<std::pair<int, int>>& on, double height) {
+  std::vector<double> e(static_cast<size_t>(n), 0.0);
+  for (auto [a, b] : on) {
+    for (int i = a; i <= b; ++i) e[static_cast<size_t>(i)] = height;
+  }
+  return e;
+}
+
+TEST(GestureSpotting, PseudoEnergyIsHalfTheSquaredSpeed) {
+  const std::vector<Eigen::Vector3d> x = {{0, 0, 0}, {0.1, 0, 0}, {0.1, 0.2, 0}};
+  const auto e = kinetic_pseudo_energy(x, 30.0);
+  EXPECT_DOUBLE_EQ(e[0], 0.0);
+  EXPECT_NEAR(e[1], 0.5 * 3.0 * 3.0, 1e-12);
+  EXPECT_NEAR(e[2], 0.5 * 6.0 * 6.0, 1e-12);
+}
+
+TEST(GestureSpotting, Algorithm14DelayByHand) {
+  // History [t-9, t] = [41, 50]; psE < threshold last at 47.
+  const auto e = pulses(60, {{48, 59}}, 1.0);
+  EXPECT_EQ(spotting_delay(e, 50, 10, 0.5), 3);
+  EXPECT_EQ(spotting_delay(e, 59, 10, 0.5), 0);  // nothing below in [50, 59]
+}
+
+TEST(GestureSpotting, KnownIntervalsWithADirectionChange) {
+  // Two gestures at [50, 79] and [150, 169], the first with a two-frame stop (a wave turning):
+  // the mean over 10 frames with psE = 2 x threshold crosses after 5 moving frames (t = 54), so
+  // Alg. 14 finds the last still frame 49 (delay 5); it falls below at t = 85, minus 5: 80.
+  auto e = pulses(200, {{50, 79}, {150, 169}}, 0.36);
+  e[64] = e[65] = 0.0;
+  SpottingParams p;
+  p.threshold = 0.18;
+  const auto s = spot_gestures(e, p);
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s[0].first, 49);
+  EXPECT_EQ(s[0].last, 80);
+  EXPECT_EQ(s[1].first, 149);
+  EXPECT_EQ(s[1].last, 170);
+  // A short twitch is not a gesture; one still open at the end closes there.
+  p.min_frames = 8;
+  const auto t = spot_gestures(pulses(40, {{5, 7}, {30, 39}}, 0.36), p);
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_EQ(t[0].first, 29);
+  EXPECT_EQ(t[0].last, 39);
+}
+
+TEST(GestureNormalization, ClampedSplineByHand) {
+  // y = (0, 1, 0), end slopes 1 and -1: the second derivatives solve 2 M0 + M1 = 0,
+  // M0 + 4 M1 + M2 = -12, M1 + 2 M2 = 0, so M = (2, -4, 2) and
+  // S(0.5) = 2/48 - 4/48 + (0 - 2/6) / 2 + (1 + 4/6) / 2 = 5/8.
+  Eigen::MatrixXd y(3, 1);
+  y << 0, 1, 0;
+  const Eigen::MatrixXd r = resample_clamped_spline(y, 5);
+  EXPECT_NEAR(r(0, 0), 0.0, 1e-12);
+  EXPECT_NEAR(r(1, 0), 0.625, 1e-12);
+  EXPECT_NEAR(r(2, 0), 1.0, 1e-12);
+  EXPECT_NEAR(r(3, 0), 0.625, 1e-12);
+  EXPECT_NEAR(r(4, 0), 0.0, 1e-12);
+  // Linear data is reproduced exactly (its slopes are its first differences).
+  Eigen::MatrixXd line(7, 2);
+  for (int i = 0; i < 7; ++i) line.row(i) << 2.0 + 0.5 * i, -1.0 * i;
+  const Eigen::MatrixXd l = resample_clamped_spline(line, 13);
+  for (int s = 0; s < 13; ++s) {
+    const double t = 0.5 * s;
+    EXPECT_NEAR(l(s, 0), 2.0 + 0.5 * t, 1e-12);
+    EXPECT_NEAR(l(s, 1), -t, 1e-12);
+  }
+}
+
+TEST(GestureNormalization, IgnoresPlaceAndSize) {
+  std::vector<Eigen::Vector3d> path, moved;
+  for (int i = 0; i < 23; ++i) {
+    const double a = 0.3 * i;
+    path.emplace_back(0.2 * std::cos(a), 0.1 * std::sin(a), 0.01 * i);
+    moved.push_back(2.5 * path.back() + Eigen::Vector3d(1, -3, 0.5));
+  }
+  const Eigen::VectorXd n = normalize_gesture(path);
+  ASSERT_EQ(n.size(), 90);
+  EXPECT_NEAR(n.minCoeff(), 0.0, 1e-12);
+  EXPECT_NEAR(n.maxCoeff(), 50.0, 1e-12);
+  EXPECT_LT((normalize_gesture(moved) - n).norm(), 1e-9);
+}
+
+TEST(GestureClassifier, KnnAgreesWithBruteForceAndSvmSeparatesClusters) {
+  std::mt19937 rng(5);
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::vector<Eigen::VectorXd> x;
+  std::vector<std::string> y;
+  const std::vector<std::string> names = {"a", "b", "c"};
+  for (int i = 0; i < 30; ++i) {
+    Eigen::VectorXd v(2);
+    v << g(rng) + 6.0 * (i % 3), g(rng);
+    x.push_back(v);
+    y.push_back(names[static_cast<size_t>(i % 3)]);
+  }
+  GestureClassifier knn(GestureClassifierKind::knn);
+  knn.train(x, y);
+  GestureClassifier svm(GestureClassifierKind::svm);
+  svm.train(x, y);
+  for (int q = 0; q < 50; ++q) {
+    Eigen::VectorXd v(2);
+    v << 14.0 * (g(rng) * 0.3 + 0.5) - 1.0, 2.0 * g(rng);
+    size_t best = 0;
+    for (size_t i = 1; i < x.size(); ++i) {
+      if ((x[i] - v).squaredNorm() < (x[best] - v).squaredNorm()) best = i;
+    }
+    EXPECT_EQ(knn.predict(v), y[best]);
+  }
+  for (int c = 0; c < 3; ++c) {
+    Eigen::VectorXd v(2);
+    v << 6.0 * c, 0.0;
+    EXPECT_EQ(svm.predict(v), names[static_cast<size_t>(c)]);
+  }
+  EXPECT_NE(testing::error_of([] {
+              GestureClassifier(GestureClassifierKind::knn).train({}, {});
+            }).find("at least one"),
+            std::string::npos);
+}
+
+// A neutral humanoid's HE15 joints, turned by `yaw` and moved by `at`, the right wrist put at
+// `hand` (pelvis frame).
+std::vector<Eigen::Vector3d> body_at(const Skeleton& s, double yaw, const Eigen::Vector3d& at,
+                                     const Eigen::Vector3d& hand, const Eigen::Vector3d& left) {
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  const Eigen::Vector3d root = s[s.require("humanoid_root")].center;
+  std::vector<Eigen::Vector3d> out;
+  for (const auto& name : he15_joints()) {
+    Eigen::Vector3d p = s[s.require(name)].center - root;
+    if (name == "r_radiocarpal") p = hand;
+    if (name == "l_radiocarpal") p = left;
+    out.push_back(r * p + at);
+  }
+  return out;
+}
+
+TEST(GestureSignals, PelvisFrameIgnoresHeading) {
+  const Skeleton s = build_humanoid(BodyParameters{});
+  JointTrack t;
+  t.joints = he15_joints();
+  const Eigen::Vector3d hand(-0.3, 0.4, 0.2), left(0.25, -0.1, 0.05);
+  t.add_frame(0, body_at(s, 0.0, {0, 1, 0}, hand, left));
+  t.add_frame(1, body_at(s, 2.0, {1, 1, -2}, hand, left));
+  const BodySignals b = body_signals(t, "test");
+  for (int f = 0; f < 2; ++f) {
+    EXPECT_LT((b.hand[1][f] - hand).norm(), 1e-9);
+    EXPECT_LT((b.hand[0][f] - left).norm(), 1e-9);
+  }
+  EXPECT_LT((b.pose[0] - b.pose[1]).norm(), 1e-9);
+  JointTrack missing;
+  missing.joints = {"humanoid_root"};
+  EXPECT_NE(testing::error_of([&] { body_signals(missing, "x.csv"); }).find("x.csv: no joint"),
+            std::string::npos);
+}
+
+// One subject: the right hand draws circles upright ("O") and level ("C") at 1.2 m/s, held still
+// ("down") in between; `scale` and `yaw` make the subject differ.
+GestureCorpus synthetic_subject(const Skeleton& s, double scale, double yaw, std::string name) {
+  GestureCorpus c;
+  c.name = std::move(name);
+  c.fps = 30;
+  JointTrack t;
+  t.joints = he15_joints();
+  const Eigen::Vector3d rest(-0.25, -0.1, 0.1), left(0.25, -0.1, 0.05);
+  int frame = 0;
+  auto hold = [&](int n) {
+    c.truth.push_back({"subject", "r_hand", "static", "down", frame, frame + n - 1});
+    for (int i = 0; i < n; ++i) t.add_frame(frame++, body_at(s, yaw, {0, 1, 0}, rest, left));
+  };
+  auto gesture = [&](const std::string& label) {
+    const int n = 40;
+    c.truth.push_back({"subject", "r_hand", "dynamic", label, frame, frame + n - 1});
+    for (int i = 0; i < n; ++i) {
+      const double u = static_cast<double>(i + 1) / n;
+      Eigen::Vector3d p = rest;
+      if (label == "O") {
+        p += scale *
+             Eigen::Vector3d(0.25 * std::sin(2 * M_PI * u), 0.25 * (1 - std::cos(2 * M_PI * u)), 0);
+      } else {
+        p += scale *
+             Eigen::Vector3d(0.25 * std::sin(2 * M_PI * u), 0, 0.25 * (1 - std::cos(2 * M_PI * u)));
+      }
+      t.add_frame(frame++, body_at(s, yaw, {0, 1, 0}, p, left));
+    }
+  };
+  hold(30);
+  for (const char* label : {"O", "C", "O", "C", "C", "O"}) {
+    gesture(label);
+    hold(30);
+  }
+  c.signals = body_signals(t, c.name);
+  return c;
+}
+
+TEST(GestureEvaluation, TwoSyntheticSubjectsAreSpottedAndRecognised) {
+  const Skeleton s = build_humanoid(BodyParameters{});
+  const std::vector<GestureCorpus> corpora = {synthetic_subject(s, 1.0, 0.0, "one"),
+                                              synthetic_subject(s, 0.8, 0.7, "two")};
+  const GestureResults r = evaluate_gestures(corpora, {});
+  EXPECT_EQ(r.truth_count, 12);
+  EXPECT_EQ(r.matched, 12);
+  EXPECT_DOUBLE_EQ(r.f1, 1.0);
+  for (const auto& [kind, conf] : r.recognition) {
+    EXPECT_EQ(conf.total, 12) << name_of(kGestureClassifiers, kind);
+    EXPECT_DOUBLE_EQ(conf.accuracy, 1.0) << name_of(kGestureClassifiers, kind);
+  }
+  EXPECT_GT(r.poses.total, 0);
+  EXPECT_DOUBLE_EQ(r.poses.accuracy, 1.0);
+  EXPECT_NE(testing::error_of([&] { evaluate_gestures({corpora[0]}, {}); }).find("two corpora"),
+            std::string::npos);
+}
+
+TEST(GestureEvaluation, ALimbNoOtherSubjectUsedIsUnknown) {
+  const Skeleton s = build_humanoid(BodyParameters{});
+  GestureCorpus left = synthetic_subject(s, 1.0, 0.0, "left");
+  std::swap(left.signals.hand[0], left.signals.hand[1]);
+  for (auto& g : left.truth) g.limb = "l_hand";
+  const GestureResults r = evaluate_gestures({synthetic_subject(s, 1.0, 0.0, "right"), left}, {});
+  EXPECT_EQ(r.matched, 12);
+  const Confusion& c = r.recognition.at(GestureClassifierKind::knn);
+  EXPECT_EQ(c.total, 12);
+  EXPECT_EQ(c.correct, 0);
+  for (const auto& g : r.corpora[0].spotted) {
+    EXPECT_EQ(g.predicted.at(GestureClassifierKind::knn), "unknown");
+  }
+}
+
+// The command on two short renders of scenes/gestures.yaml scored on their truth: the last
+// line agrees with gestures.json; bad inputs are named.
+TEST(GesturesCommand, ScoresRenderedCorporaAndNamesBadInput) {
+  testing::TempDir tmp;
+  const std::string scene = std::string(SIMCAP_SOURCE_DIR) + "/scenes/gestures.yaml";
+  for (int seed : {1, 2}) {
+    const std::string ds = (tmp / ("g" + std::to_string(seed))).string();
+    ASSERT_EQ(testing::run_simcap("render " + scene + " -o " + ds + " --frames 450 --seed " +
+                                  std::to_string(seed) + " --set rig.resolution=[160,120] -q"),
+              0);
+  }
+  const std::string g1 = (tmp / "g1").string(), g2 = (tmp / "g2").string();
+  const std::string out = (tmp / "out").string();
+  std::string text;
+  ASSERT_EQ(testing::run_simcap(
+                "gestures " + g1 + " " + g1 + "/gt " + g2 + " " + g2 + "/gt -o " + out, &text),
+            0)
+      << text;
+  const auto fields = testing::key_values(testing::last_line(text));
+  ASSERT_TRUE(fields.contains("spotting_f1") && fields.contains("recognition_accuracy")) << text;
+  std::ifstream in(out + "/gestures.json");
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_NEAR(j["spotting"]["f1"].get<double>(), std::stod(fields.at("spotting_f1")), 1e-4);
+  EXPECT_EQ(j["spotting"]["truth_gestures"].get<int>(), 2);
+  EXPECT_TRUE(std::filesystem::exists(out + "/spotted.csv"));
+
+  EXPECT_EQ(testing::run_simcap("gestures " + g1 + " " + g1 + "/gt " + g2 + " -o " + out, &text),
+            1);
+  EXPECT_NE(text.find("DATASET TRACK pairs"), std::string::npos) << text;
+  EXPECT_EQ(testing::run_simcap("gestures " + g1 + " " + g1 + " " + g2 + " " + g2 + "/gt -o " + out,
+                                &text),
+            1);
+  EXPECT_NE(text.find("joints3d.csv"), std::string::npos) << text;
+  EXPECT_EQ(testing::run_simcap(
+                "gestures " + g1 + "/gt " + g1 + "/gt " + g2 + " " + g2 + "/gt -o " + out, &text),
+            1);
+  EXPECT_NE(text.find("gestures.csv"), std::string::npos) << text;
+}
+
+}  // namespace
+}  // namespace simcap::tracker

@@ -1,0 +1,29 @@
+// Reading a part's distance off a depth image (the thesis' "single depth camera"): the median
+// z-depth under the part's tracked features, robust to a feature on the background.
+#pragma once
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+#include <optional>
+#include <vector>
+
+#include "core/camera.h"
+
+namespace simcap::tracker {
+
+// Median of the finite values of `depth` (CV_32FC1, camera z in metres, +inf: nothing) at the
+// pixels nearest `points`; nullopt when none is finite.
+std::optional<double> median_depth(const cv::Mat& depth, const std::vector<cv::Point>& points);
+
+// Grid pixels of `mask` (CV_8UC1) within `half` px of `centre` (a square), every `step` px.
+std::vector<cv::Point> mask_samples(const cv::Mat& mask, cv::Point2d centre, int half, int step);
+
+// The world point seen at `pixel` whose camera z is `z`.
+Eigen::Vector3d point_at_depth(const Camera& camera, cv::Point2d pixel, double z);
+
+// The world point seen at `pixel` at z-depth `surface_z`, pushed `behind` metres further along
+// the viewing ray (from a part's surface to its centre).
+Eigen::Vector3d centre_behind_surface(const Camera& camera, cv::Point2d pixel, double surface_z,
+                                      double behind);
+
+}  // namespace simcap::tracker

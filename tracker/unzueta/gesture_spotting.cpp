@@ -1,0 +1,47 @@
+#include "tracker/unzueta/gesture_spotting.h"
+
+#include <algorithm>
+
+namespace simcap::tracker {
+
+std::vector<double> kinetic_pseudo_energy(const std::vector<Eigen::Vector3d>& x, double fps) {
+  std::vector<double> e(x.size(), 0.0);
+  for (size_t i = 1; i < x.size(); ++i) e[i] = 0.5 * (x[i] - x[i - 1]).squaredNorm() * fps * fps;
+  return e;
+}
+
+int spotting_delay(const std::vector<double>& psE, int t, int history, double threshold) {
+  int starting_point = t;
+  for (int i = std::max(0, t - (history - 1)); i <= t; ++i) {
+    if (psE[i] < threshold) starting_point = i;
+  }
+  return t - starting_point;
+}
+
+std::vector<Segment> spot_gestures(const std::vector<double>& psE, const SpottingParams& params) {
+  std::vector<Segment> out;
+  const int n = static_cast<int>(psE.size());
+  double sum = 0;
+  bool active = false;
+  int start = 0, delay = 0;
+  auto close = [&](int end) {
+    if (end - start + 1 >= params.min_frames) out.push_back({start, end});
+    active = false;
+  };
+  for (int t = 0; t < n; ++t) {
+    sum += psE[t];
+    if (t >= params.history) sum -= psE[t - params.history];
+    const double mean = sum / std::min(t + 1, params.history);
+    if (!active && mean >= params.threshold) {
+      delay = spotting_delay(psE, t, params.history, params.threshold);
+      start = t - delay;
+      active = true;
+    } else if (active && mean < params.threshold) {
+      close(std::max(start, t - delay));
+    }
+  }
+  if (active) close(n - 1);
+  return out;
+}
+
+}  // namespace simcap::tracker

@@ -1,0 +1,448 @@
+#include "tracker/unzueta/unzueta_job.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <opencv2/imgcodecs.hpp>
+#include <optional>
+
+#include "core/csv.h"
+#include "core/error.h"
+#include "core/image_io.h"
+#include "core/progress.h"
+#include "models/body_mesh.h"
+#include "models/humanoid.h"
+#include "tracker/common/dataset.h"
+#include "tracker/common/mask_box.h"
+#include "tracker/unzueta/depth_lookup.h"
+#include "tracker/unzueta/part_model.h"
+#include "tracker/unzueta/sik.h"
+#include "tracker/unzueta/sik_track_job.h"
+#include "tracker/unzueta/triangulation.h"
+
+namespace simcap::tracker {
+namespace fs = std::filesystem;
+
+namespace {
+
+// The pelvis' depth is read on the silhouette within this fraction of the person's height of
+// its image position.
+constexpr double kPelvisWindow = 0.03;
+// Height assumed for the floor contact of the feet before the body is measured (the feet's
+// centres lie ~4% of it above the floor, so a 10 cm error moves them by 4 mm).
+constexpr double kAssumedHeight = 1.75;
+
+std::string frame_name(int frame, const char* ext) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%06d.%s", frame, ext);
+  return buf;
+}
+
+struct Images {
+  cv::Mat bgr, silhouette, depth;
+};
+
+class Pipeline {
+ public:
+  Pipeline(const fs::path& root, const SikTrackOptions& options)
+      : options_(options), ds_(root), silhouettes_(ds_, options.silhouettes) {
+    frames_ = ds_.frames(silhouettes_.image_kind());
+    if (silhouettes_.image_kind() != "rgb" && ds_.frames("rgb") != frames_) {
+      throw Error(root.string() + ": rgb and mask frames differ");
+    }
+    if (options.max_frames >= 0 && static_cast<int>(frames_.size()) > options.max_frames) {
+      frames_.resize(options.max_frames);
+    }
+    if (frames_.empty()) throw Error(root.string() + ": no frames to track");
+    if (options.effectors == EffectorSource::gt) {
+      throw Error("the pixel pipeline needs --effectors depth, mono or multiview");
+    }
+    if (options.camera < 0 || options.camera >= ds_.camera_count()) {
+      throw Error("--camera: the dataset has " + std::to_string(ds_.camera_count()) +
+                  " camera(s); index " + std::to_string(options.camera) + " does not exist");
+    }
+    if (options.effectors == EffectorSource::multiview) {
+      if (ds_.camera_count() < 2) {
+        throw Error("--effectors multiview: " + root.string() + " has one camera (needs two)");
+      }
+      for (int c = 0; c < ds_.camera_count(); ++c) cameras_.push_back(c);
+    } else {
+      cameras_.push_back(options.camera);
+    }
+    trackers_.assign(cameras_.size(), CameraTracker(options.tracking));
+  }
+
+  TrackSummary run(const UnzuetaSink& sink) {
+    Progress progress("sik from pixels", static_cast<long>(frames_.size()), options_.quiet);
+    const auto start = std::chrono::steady_clock::now();
+    for (size_t k = 0; k < frames_.size(); ++k) {
+      const int f = frames_[k];
+      std::vector<Images> images;
+      for (int c : cameras_) images.push_back(read(c, f));
+      if (k == 0) {
+        initialize(f, images);
+      } else {
+        for (size_t i = 0; i < cameras_.size(); ++i) {
+          trackers_[i].track(images[i].bgr, images[i].silhouette, part_depths(cameras_[i]),
+                             limb_roots(cameras_[i]));
+        }
+      }
+      UnzuetaFrame out;
+      out.frame = f;
+      out.centre = k == 0 ? centre_ : lift(images);
+      solve(out);
+      centre_ = out.centre;
+      if (sink) sink(out, cameras_, trackers_);
+      progress.advance();
+    }
+    progress.finish();
+    TrackSummary s;
+    s.frames = static_cast<int>(frames_.size());
+    s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return s;
+  }
+
+  const Skeleton& skeleton() const { return skeleton_; }
+
+ private:
+  const Camera& camera(int c) const { return ds_.cameras()[c]; }
+
+  Images read(int c, int f) const {
+    Images im;
+    im.silhouette = silhouettes_.extract(c, f, &im.bgr);
+    if (im.bgr.empty()) im.bgr = ds_.rgb(c, f);
+    if (options_.effectors == EffectorSource::depth) {
+      const fs::path path = ds_.root() / camera(c).name / "depth" / frame_name(f, "exr");
+      if (!fs::is_regular_file(path)) {
+        throw Error(path.string() + ": missing (--effectors depth reads the dataset's depth maps)");
+      }
+      im.depth = read_image(path);
+    }
+    return im;
+  }
+
+  std::array<double, kEffectorCount> part_depths(int c) const {
+    std::array<double, kEffectorCount> z;
+    for (Effector e : kEffectors) z[index_of(e)] = camera(c).to_camera(centre_[index_of(e)]).z();
+    return z;
+  }
+
+  // Where each part's limb starts in camera c, from the previous pose: the neck's base, the
+  // shoulders, the hips (SIK places them from the pelvis and head, not from hands and feet).
+  std::array<std::optional<cv::Point2d>, kEffectorCount> limb_roots(int c) const {
+    std::array<std::optional<cv::Point2d>, kEffectorCount> out;
+    if (position_.empty()) return out;
+    for (Effector e : kEffectors) {
+      if (e == Effector::pelvis) continue;
+      if (const auto p = camera(c).project(position_[limb_root_[index_of(e)]])) {
+        out[index_of(e)] = cv::Point2d(p->x(), p->y());
+      }
+    }
+    return out;
+  }
+
+  // --- first frame ------------------------------------------------------------------------
+
+  void initialize(int f, const std::vector<Images>& images) {
+    std::optional<JointTrack> truth;
+    if (options_.init == InitMethod::gt) truth = ds_.ground_truth("--init gt");
+    // ROIs per camera.
+    std::vector<InitialRegions> regions(cameras_.size());
+    const size_t primary =
+        options_.effectors == EffectorSource::multiview ? static_cast<size_t>(options_.camera) : 0;
+    std::array<Eigen::Vector3d, kEffectorCount> posture{};
+    if (options_.init == InitMethod::gt) {
+      for (size_t i = 0; i < cameras_.size(); ++i) {
+        const fs::path labels =
+            ds_.root() / camera(cameras_[i]).name / "parts" / frame_name(f, "png");
+        const cv::Mat l = cv::imread(labels.string(), cv::IMREAD_UNCHANGED);
+        if (l.empty())
+          throw Error(labels.string() +
+                      ": missing or unreadable (--init gt reads the part labels)");
+        regions[i] = labelled_part_regions(l, ds_.root() / "parts.json");
+      }
+    } else {
+      regions[primary] = calibration_posture_regions(images[primary].silhouette);
+      posture = posture_geometry(cameras_[primary], regions[primary], images[primary]);
+      for (size_t i = 0; i < cameras_.size(); ++i) {
+        if (i != primary)
+          regions[i] = project_regions(cameras_[i], cameras_[primary], regions[primary], posture,
+                                       images[i].silhouette);
+      }
+    }
+    for (size_t i = 0; i < cameras_.size(); ++i) {
+      trackers_[i].initialize(images[i].bgr, images[i].silhouette, regions[i]);
+    }
+    // The body SIK solves.
+    if (truth) {
+      skeleton_ = sik_humanoid_for_track(*truth);
+    } else {
+      BodyParameters unit_body;
+      unit_body.height = 1.0;
+      const Skeleton unit = build_humanoid(unit_body);
+      const PartModel unit_parts(unit, build_body_mesh(unit));
+      const double head_fraction =
+          (unit[unit_parts.joint(Effector::head)].center + unit_parts.centre_offset(Effector::head))
+              .y();
+      BodyParameters body;
+      body.height = std::clamp(posture[index_of(Effector::head)].y() / head_fraction, 0.6, 2.5);
+      skeleton_ = build_humanoid(body);
+    }
+    const BodyMesh mesh = build_body_mesh(skeleton_);
+    SikOptions sik;
+    sik.pelvis_weights = options_.pelvis_weights;
+    solver_.emplace(SikBody(skeleton_), mesh, sik);
+    parts_.emplace(skeleton_, mesh);
+    he15_.clear();
+    for (const std::string& name : he15_joints()) he15_.push_back(skeleton_.require(name));
+    limb_root_ = {skeleton_.require("vc7"),        skeleton_.require("l_shoulder"),
+                  skeleton_.require("r_shoulder"), skeleton_.require("l_hip"),
+                  skeleton_.require("r_hip"),      0};
+    // Neutral rotations until the first solve.
+    rotation_.assign(skeleton_.size(), Eigen::Quaterniond::Identity());
+
+    // The parts' first 3D centres: with --init gt the truth's (the part labels give no 3D
+    // posture), else the calibration posture's.
+    if (truth) {
+      const int ti = truth->frames.empty() || truth->frames.front() != f ? -1 : 0;
+      if (ti < 0) throw Error("--init gt: the ground truth has no frame " + std::to_string(f));
+      for (Effector e : kEffectors) {
+        const int j = truth->joint_index(std::string(effector_joint(e)));
+        if (j < 0)
+          throw Error("--init gt: the ground truth lacks " + std::string(effector_joint(e)));
+        posture[index_of(e)] = truth->positions[ti][j] + parts_->centre_offset(e);
+      }
+    }
+    centre_ = posture;
+    if (options_.effectors == EffectorSource::mono) {
+      for (Effector e : kEffectors)
+        mono_depth_[index_of(e)] = camera(cameras_[0]).to_camera(centre_[index_of(e)]).z();
+    } else {
+      centre_ = lift(images);  // parts it cannot see keep the posture's centres
+    }
+    // The pelvis measurement's offset from the root joint.
+    const Eigen::Vector3d pelvis = centre_[index_of(Effector::pelvis)];
+    if (truth) {
+      pelvis_offset_ = truth->positions[0][truth->joint_index("humanoid_root")] - pelvis;
+    } else {
+      pelvis_offset_ = Eigen::Vector3d(0, skeleton_[0].center.y() - pelvis.y(), 0);
+    }
+  }
+
+  // Calibration posture in 3D from one view: the feet on the floor, the rest in the vertical
+  // plane through them facing the camera; with depth images, read off them instead.
+  std::array<Eigen::Vector3d, kEffectorCount> posture_geometry(int c, const InitialRegions& r,
+                                                               const Images& im) const {
+    const Camera& cam = camera(c);
+    std::array<Eigen::Vector3d, kEffectorCount> p{};
+    auto centre_px = [&](Effector e) {
+      const cv::Rect2d& roi = *r.roi[index_of(e)];
+      return cv::Point2d(roi.x + 0.5 * roi.width, roi.y + 0.5 * roi.height);
+    };
+    const double foot_y = 0.04 * kAssumedHeight;
+    for (Effector e : {Effector::left_foot, Effector::right_foot}) {
+      const Eigen::Vector3d ray = cam.unproject(Eigen::Vector2d(centre_px(e).x, centre_px(e).y));
+      const Eigen::Vector3d o = cam.centre();
+      if (std::abs(ray.y()) < 1e-6 || (foot_y - o.y()) / ray.y() <= 0) {
+        throw Error("calibration posture: the camera does not see the floor under the feet");
+      }
+      p[index_of(e)] = o + ray * ((foot_y - o.y()) / ray.y());
+    }
+    const Eigen::Vector3d mid =
+        0.5 * (p[index_of(Effector::left_foot)] + p[index_of(Effector::right_foot)]);
+    Eigen::Vector3d normal = mid - cam.centre();
+    normal.y() = 0;
+    normal.normalize();
+    for (Effector e :
+         {Effector::head, Effector::left_hand, Effector::right_hand, Effector::pelvis}) {
+      cv::Point2d px;
+      if (e == Effector::pelvis) {
+        const auto m = PelvisTracker(PelvisParams{}.scaled_for(r.person_px)).measure(im.silhouette);
+        if (!m) throw Error("calibration posture: no silhouette for the pelvis");
+        px = *m;
+      } else {
+        px = centre_px(e);
+      }
+      const Eigen::Vector3d ray = cam.unproject(Eigen::Vector2d(px.x, px.y));
+      p[index_of(e)] = cam.centre() + ray * ((mid - cam.centre()).dot(normal) / ray.dot(normal));
+    }
+    if (!im.depth.empty()) {
+      for (Effector e : kEffectors) {
+        const Eigen::Vector3d q = cam.to_camera(p[index_of(e)]);
+        const auto px = cam.project_camera(q);
+        const int half = static_cast<int>(0.03 * r.person_px);
+        const auto z =
+            median_depth(im.depth, mask_samples(im.silhouette, {px.x(), px.y()}, half, 1));
+        if (z) p[index_of(e)] = point_at_depth(cam, {px.x(), px.y()}, *z);
+      }
+    }
+    return p;
+  }
+
+  // The primary camera's ROIs carried to camera c through the posture's 3D points.
+  InitialRegions project_regions(int c, int primary, const InitialRegions& r,
+                                 const std::array<Eigen::Vector3d, kEffectorCount>& posture,
+                                 const cv::Mat& silhouette) const {
+    InitialRegions out;
+    out.person_px = mask_box(silhouette).height;
+    for (Effector e : kEffectors) {
+      if (e == Effector::pelvis || !r.roi[index_of(e)]) continue;
+      const Eigen::Vector3d& x = posture[index_of(e)];
+      const auto px = camera(c).project(x);
+      if (!px || !camera(c).in_frustum(x)) continue;
+      const double side = r.roi[index_of(e)]->width * camera(primary).to_camera(x).z() /
+                          camera(primary).K(0, 0) * camera(c).K(0, 0) / camera(c).to_camera(x).z();
+      out.roi[index_of(e)] = cv::Rect2d(px->x() - 0.5 * side, px->y() - 0.5 * side, side, side);
+    }
+    return out;
+  }
+
+  // --- every frame --------------------------------------------------------------------------
+
+  std::array<Eigen::Vector3d, kEffectorCount> lift(const std::vector<Images>& images) const {
+    std::array<Eigen::Vector3d, kEffectorCount> out = centre_;
+    for (Effector e : kEffectors) {
+      const int i = index_of(e);
+      if (options_.effectors == EffectorSource::multiview) {
+        std::vector<PixelObservation> views;
+        int seen = -1;  // a camera that still has the part (tracking or predicted)
+        for (size_t k = 0; k < cameras_.size(); ++k) {
+          const CfofState s = trackers_[k].state(e);
+          if (s == CfofState::lost) continue;
+          if (seen < 0 || s == CfofState::tracking) seen = static_cast<int>(k);
+          if (s != CfofState::tracking) continue;
+          const cv::Point2d p = trackers_[k].position(e);
+          views.push_back({&camera(cameras_[k]), {p.x, p.y}});
+        }
+        if (const auto x = triangulate(views)) {
+          out[i] = *x;
+        } else if (seen >= 0) {
+          // One view (or only predictions): along its ray at the part's previous depth.
+          const Camera& cam = camera(cameras_[seen]);
+          out[i] = point_at_depth(cam, trackers_[seen].position(e), cam.to_camera(centre_[i]).z());
+        }
+        continue;
+      }
+      const int c = cameras_[0];
+      const CameraTracker& t = trackers_[0];
+      const CfofState s = t.state(e);
+      if (s == CfofState::lost) continue;
+      const cv::Point2d px = t.position(e);
+      if (options_.effectors == EffectorSource::mono) {
+        out[i] = point_at_depth(camera(c), px, mono_depth_[i]);
+        continue;
+      }
+      std::optional<double> z;
+      if (s == CfofState::tracking) {
+        const std::vector<cv::Point> at =
+            e == Effector::pelvis ? mask_samples(images[0].silhouette, px,
+                                                 static_cast<int>(kPelvisWindow * t.person_px()), 2)
+                                  : t.surface(e);
+        z = median_depth(images[0].depth, at);
+      }
+      const Eigen::Vector3d ray = camera(c).unproject({px.x, px.y});
+      const double behind =
+          parts_->depth_behind_surface(e, rotation_[parts_->joint(e)], ray, e == Effector::pelvis);
+      out[i] = z ? centre_behind_surface(camera(c), px, *z, behind)
+                 : point_at_depth(camera(c), px, camera(c).to_camera(centre_[i]).z());
+    }
+    return out;
+  }
+
+  void solve(UnzuetaFrame& out) {
+    const SikBody& body = solver_->body();
+    // Twice: the second pass turns the part-to-joint offsets as the first pass posed the body.
+    for (int pass = 0; pass < 2; ++pass) {
+      for (Effector e : kEffectors) {
+        const int i = index_of(e);
+        out.target[i] = e == Effector::pelvis
+                            ? Eigen::Vector3d(out.centre[i] + pelvis_offset_)
+                            : parts_->joint_from_centre(e, out.centre[i], rotation_);
+      }
+      SikTargets targets;
+      targets.pelvis = out.target[index_of(Effector::pelvis)];
+      targets.head = out.target[index_of(Effector::head)];
+      targets.wrist = {out.target[index_of(Effector::left_hand)],
+                       out.target[index_of(Effector::right_hand)]};
+      targets.ankle = {out.target[index_of(Effector::left_foot)],
+                       out.target[index_of(Effector::right_foot)]};
+      body.forward(solver_->solve(targets), rotation_, position_);
+    }
+    out.he15.clear();
+    for (int j : he15_) out.he15.push_back(position_[j]);
+  }
+
+  SikTrackOptions options_;
+  Dataset ds_;
+  SilhouetteExtractor silhouettes_;
+  std::vector<int> frames_, cameras_;
+  std::vector<CameraTracker> trackers_;
+  Skeleton skeleton_;
+  std::optional<SikSolver> solver_;
+  std::optional<PartModel> parts_;
+  std::vector<int> he15_;
+  std::array<int, kEffectorCount> limb_root_{};
+  std::array<Eigen::Vector3d, kEffectorCount> centre_{};
+  std::array<double, kEffectorCount> mono_depth_{};
+  Eigen::Vector3d pelvis_offset_ = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Quaterniond> rotation_;
+  std::vector<Eigen::Vector3d> position_;
+};
+
+}  // namespace
+
+TrackSummary run_unzueta(const fs::path& dataset, const SikTrackOptions& options,
+                         const UnzuetaSink& sink) {
+  Pipeline pipeline(dataset, options);
+  return pipeline.run(sink);
+}
+
+TrackSummary track_dataset_unzueta(const fs::path& dataset, const fs::path& out,
+                                   const SikTrackOptions& options) {
+  Pipeline pipeline(dataset, options);
+  JointTrack track;
+  track.joints = he15_joints();
+  fs::create_directories(out / "diagnostics");
+  CsvWriter e2d(out / "effectors2d.csv", kEffectors2dColumns);
+  CsvWriter e3d(out / "effectors3d.csv", {"frame", "effector", "joint", "x", "y", "z"});
+  const Dataset ds(dataset);
+  char line[256];
+  TrackSummary s = pipeline.run([&](const UnzuetaFrame& f, const std::vector<int>& cameras,
+                                    const std::vector<CameraTracker>& trackers) {
+    track.add_frame(f.frame, f.he15);
+    for (Effector e : kEffectors) {
+      const Eigen::Vector3d& x = f.target[index_of(e)];
+      std::snprintf(line, sizeof line, "%d,%s,%s,%.7f,%.7f,%.7f\n", f.frame,
+                    std::string(effector_name(e)).c_str(), std::string(effector_joint(e)).c_str(),
+                    x.x(), x.y(), x.z());
+      e3d.out() << line;
+    }
+    for (size_t k = 0; k < cameras.size(); ++k) {
+      const Camera& cam = ds.cameras()[cameras[k]];
+      for (Effector e : kEffectors) {
+        const auto px = cam.project(f.target[index_of(e)]);
+        if (!px) continue;
+        const cv::Point2d part = trackers[k].position(e);
+        std::snprintf(line, sizeof line, "%d,%s,%s,%s,%.3f,%.3f,%.3f,%.3f,%s\n", f.frame,
+                      cam.name.c_str(), std::string(effector_name(e)).c_str(),
+                      std::string(effector_joint(e)).c_str(), px->x(), px->y(), part.x, part.y,
+                      cfof_state_name(trackers[k].state(e)));
+        e2d.out() << line;
+      }
+    }
+  });
+  CsvWriter neutral(out / "diagnostics" / "sik_humanoid.csv", {"joint", "x", "y", "z"});
+  for (const Joint& j : pipeline.skeleton().joints()) {
+    std::snprintf(line, sizeof line, "%s,%.7f,%.7f,%.7f\n", j.name.c_str(), j.center.x(),
+                  j.center.y(), j.center.z());
+    neutral.out() << line;
+  }
+  neutral.commit();
+  e2d.commit();
+  e3d.commit();
+  write_joint_track(out / "joints3d.csv", track);
+  s.track = out;
+  return s;
+}
+
+}  // namespace simcap::tracker
