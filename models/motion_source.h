@@ -49,7 +49,8 @@ struct ProceduralSpec {
   // One of: "stand" (neutral stance with slight sway), "tpose", "walk_in_place", "walk_path"
   // (walk along a circle of `path_radius`), "arm_raise" (both arms up and down), "turn" (a turn
   // on the spot), or an action: "jumps", "turnaround", "squat", "arms_cross", "side_steps",
-  // "bend_forward", "kick", "arm_swings" (models/procedural_actions.h).
+  // "bend_forward", "kick", "arm_swings" (models/procedural_actions.h), or "arm_gesture" (a
+  // standing person's communicative gesture, `gesture`).
   std::string kind = "walk_path";
   double duration_s = 4.0;
   double speed_m_s = 1.2;    // walking speed (walk_path) or step rate scale (walk_in_place)
@@ -66,7 +67,16 @@ struct ProceduralSpec {
   BendForwardSpec bend_forward{};
   KickSpec kick{};
   ArmSwingsSpec arm_swings{};
+  // arm_gesture: one of gesture_names(), after the four synthetic sequences of Gomez Jauregui
+  // 2011 §3.6.2 (GRETA gestures): "raise" (both arms up sideways and down: in the image plane),
+  // "joy" (hands up before the face, fast), "exclaim" (open arms turning, upper arms crossing
+  // the trunk), "ask" (hands pushed towards the front and drawn back: along the depth). The
+  // gesture fills the duration once, from and back to arms hanging.
+  std::string gesture = "raise";
 };
+
+// The gestures of ProceduralSpec::gesture.
+const std::vector<std::string>& gesture_names();
 
 struct MotionSource {
   std::filesystem::path bvh;  // when not empty: a BVH file

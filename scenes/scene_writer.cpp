@@ -157,6 +157,9 @@ void write_motion(YAML::Emitter& out, const MotionSource& m) {
     number(out, "radius", m.procedural.path_radius);
     number(out, "turn_deg", m.procedural.turn_degrees);
     write_action_keys(out, m.procedural);
+    if (m.procedural.kind == "arm_gesture") {
+      out << YAML::Key << "gesture" << YAML::Value << m.procedural.gesture;
+    }
   }
   out << YAML::EndMap;
 }
