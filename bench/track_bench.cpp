@@ -54,6 +54,7 @@ TrackSummary run_moschini_timed(const fs::path& dataset, const TrackBenchOptions
                                 StageTimes& t) {
   MoschiniOptions m = o.track.moschini;
   m.init = o.track.init;
+  m.silhouettes = o.track.silhouettes;
   m.quiet = true;
   return run_moschini(
       dataset, m, o.frames,
@@ -101,9 +102,11 @@ void print_stages(const StageTimes& t, const MoschiniOptions& m, std::FILE* out)
 
 }  // namespace
 
-void run_track_benchmark(const fs::path& dataset, const TrackBenchOptions& o, std::FILE* out) {
-  const TrackerFamily& family = tracker_family(o.track.method);
+void run_track_benchmark(const fs::path& dataset, const TrackBenchOptions& given, std::FILE* out) {
   const Dataset ds(dataset);
+  TrackBenchOptions o = given;
+  o.track.method = resolve_method(given.track.method, ds);
+  const TrackerFamily& family = tracker_family(o.track.method);
   const std::string missing = missing_for(family.needs(o.track), ds);
   if (!missing.empty()) {
     throw Error(dataset.string() + ": " + missing + " for --method " +
@@ -111,7 +114,9 @@ void run_track_benchmark(const fs::path& dataset, const TrackBenchOptions& o, st
   }
   const bool moschini = o.track.method == TrackMethod::moschini;
   // The baseline decodes what the tracker's first stage reads.
-  const bool reads_masks = !moschini || o.track.moschini.silhouettes == SilhouetteMethod::gt;
+  const bool reads_masks = o.track.method == TrackMethod::monocular
+                               ? false
+                               : !moschini || o.track.silhouettes == SilhouetteMethod::gt;
   const std::string kind = reads_masks ? "mask" : "rgb";
   std::vector<int> frames = ds.frames(kind);
   StageTimes times;
@@ -130,7 +135,7 @@ void run_track_benchmark(const fs::path& dataset, const TrackBenchOptions& o, st
                std::string(name_of(kTrackMethods, o.track.method)).c_str());
   if (moschini) {
     std::fprintf(out, ", voxel %.3f m, silhouettes %s", o.track.moschini.voxel_m,
-                 std::string(name_of(kSilhouetteMethods, o.track.moschini.silhouettes)).c_str());
+                 std::string(name_of(kSilhouetteMethods, o.track.silhouettes)).c_str());
   }
   std::fprintf(out, ", init %s, %d runs\n",
                std::string(name_of(kInitMethods, o.track.init)).c_str(), o.repeat);

@@ -16,14 +16,30 @@ TrackSummary run_moschini_family(const fs::path& dataset, const fs::path& out,
                                  const TrackOptions& o) {
   MoschiniOptions m = o.moschini;
   m.init = o.init;
+  m.silhouettes = o.silhouettes;
+  m.inspect = o.inspect;
+  m.oracle = o.oracle;
   m.quiet = o.quiet;
   return track_moschini(dataset, out, m);
 }
 
 TrackSummary run_sik_family(const fs::path& dataset, const fs::path& out, const TrackOptions& o) {
   SikTrackOptions s = o.sik;
+  s.seed = o.seed;
   s.quiet = o.quiet;
   return track_dataset_sik(dataset, out, s);
+}
+
+TrackSummary run_monocular_family(const fs::path& dataset, const fs::path& out,
+                                  const TrackOptions& o) {
+  MonocularOptions m = o.monocular;
+  m.init = o.init;
+  m.silhouettes = o.silhouettes;
+  m.tracker.filter.seed = o.seed;
+  m.inspect = o.inspect;
+  m.oracle = o.oracle;
+  m.quiet = o.quiet;
+  return track_monocular(dataset, out, m);
 }
 
 constexpr std::array kFamilies{
@@ -34,7 +50,7 @@ constexpr std::array kFamilies{
                     // colour frames.
                     DatasetNeeds n;
                     n.min_cameras = 2;
-                    n.colour = o.moschini.silhouettes != SilhouetteMethod::gt;
+                    n.colour = o.silhouettes != SilhouetteMethod::gt;
                     return n;
                   },
                   run_moschini_family},
@@ -47,6 +63,17 @@ constexpr std::array kFamilies{
                     return n;
                   },
                   run_sik_family},
+    TrackerFamily{TrackMethod::monocular,
+                  "one camera: render-and-compare particle filter (Gomez Jauregui 2011)",
+                  [](const TrackOptions& o) {
+                    // The colour classes come from the colour frames; --init gt sizes and poses
+                    // the body from the first frame's ground truth.
+                    DatasetNeeds n;
+                    n.colour = true;
+                    n.ground_truth = o.init == InitMethod::gt || o.oracle;
+                    return n;
+                  },
+                  run_monocular_family},
 };
 
 std::string method_name(TrackMethod m) {
@@ -57,6 +84,11 @@ std::string method_name(TrackMethod m) {
 
 std::span<const TrackerFamily> tracker_families() {
   return kFamilies;
+}
+
+TrackMethod resolve_method(TrackMethod method, const Dataset& dataset) {
+  if (method != TrackMethod::automatic) return method;
+  return dataset.camera_count() >= 2 ? TrackMethod::moschini : TrackMethod::monocular;
 }
 
 const TrackerFamily& tracker_family(TrackMethod method) {
@@ -87,7 +119,9 @@ std::string missing_for(const DatasetNeeds& needs, const Dataset& dataset) {
 }
 
 TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
-                           const TrackOptions& options) {
+                           const TrackOptions& given) {
+  TrackOptions options = given;
+  options.method = resolve_method(given.method, Dataset(dataset));
   const TrackerFamily& family = tracker_family(options.method);
   {
     const Dataset ds(dataset);
