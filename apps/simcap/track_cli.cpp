@@ -135,9 +135,11 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
              }
            }
          },
-         "Also write the tracked motion as TRACK/motion.bvh and/or motion.x3d (X3D H-Anim "
-         "HAnimMotion), comma-separated: " +
-             choices_text(kMotionExports) + "; simcap's humanoid sized to the track")
+         "Also write the tracked motion as TRACK/motion.bvh, motion.x3d (X3D H-Anim "
+         "HAnimMotion) and/or motion.bap (MPEG-4 BAPs), comma-separated: " +
+             choices_text(kMotionExports) +
+             "; simcap's humanoid sized to the track (monocular writes its own body's "
+             "motion.bvh and motion.bap)")
       ->delimiter(',')
       ->check(CLI::IsMember(export_names));
   gomez::MonocularSettings& m = o.monocular.tracker;
