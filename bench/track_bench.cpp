@@ -102,9 +102,11 @@ void print_stages(const StageTimes& t, const MoschiniOptions& m, std::FILE* out)
 
 }  // namespace
 
-void run_track_benchmark(const fs::path& dataset, const TrackBenchOptions& o, std::FILE* out) {
-  const TrackerFamily& family = tracker_family(o.track.method);
+void run_track_benchmark(const fs::path& dataset, const TrackBenchOptions& given, std::FILE* out) {
   const Dataset ds(dataset);
+  TrackBenchOptions o = given;
+  o.track.method = resolve_method(given.track.method, ds);
+  const TrackerFamily& family = tracker_family(o.track.method);
   const std::string missing = missing_for(family.needs(o.track), ds);
   if (!missing.empty()) {
     throw Error(dataset.string() + ": " + missing + " for --method " +

@@ -50,8 +50,9 @@ struct ProceduralSpec {
   // One of: "stand" (neutral stance with slight sway), "tpose", "walk_in_place", "walk_path"
   // (walk along a circle of `path_radius`), "arm_raise" (both arms up and down), "turn" (a turn
   // on the spot), an action: "jumps", "turnaround", "squat", "arms_cross", "side_steps",
-  // "bend_forward", "kick", "arm_swings" (models/procedural_actions.h), or "gestures" (the
-  // gesture corpus of models/gesture_motion.h; `duration_s` is then the corpus' own length).
+  // "bend_forward", "kick", "arm_swings" (models/procedural_actions.h), "gestures" (the gesture
+  // corpus of models/gesture_motion.h; `duration_s` is then the corpus' own length), or
+  // "arm_gesture" (a standing person's communicative gesture, `gesture`).
   std::string kind = "walk_path";
   double duration_s = 4.0;
   double speed_m_s = 1.2;    // walking speed (walk_path) or step rate scale (walk_in_place)
@@ -69,7 +70,16 @@ struct ProceduralSpec {
   KickSpec kick{};
   ArmSwingsSpec arm_swings{};
   GestureSpec gestures{};  // gestures
+  // arm_gesture: one of gesture_names(), after the four synthetic sequences of Gomez Jauregui
+  // 2011 §3.6.2 (GRETA gestures): "raise" (both arms up sideways and down: in the image plane),
+  // "joy" (hands up before the face, fast), "exclaim" (open arms turning, upper arms crossing
+  // the trunk), "ask" (hands pushed towards the front and drawn back: along the depth). The
+  // gesture fills the duration once, from and back to arms hanging.
+  std::string gesture = "raise";
 };
+
+// The gestures of ProceduralSpec::gesture.
+const std::vector<std::string>& gesture_names();
 
 struct MotionSource {
   std::filesystem::path bvh;  // when not empty: a BVH file

@@ -23,6 +23,57 @@ constexpr double kPi = std::numbers::pi;
 
 using namespace procedural;
 
+// A key pose of the left arm at the fraction `at` of a gesture (the right arm mirrors it):
+// shoulder abduction (out sideways), flexion (negative: forward), twist about the upper arm and
+// elbow flexion (negative), radians, in the conventions of models/joint_limits.h.
+struct ArmKey {
+  double at, abduction, flexion, twist, elbow;
+};
+
+// The gestures' keys, within Gomez Jauregui's Table 2-1 limits (so that his upper body can
+// reach every pose); simcap's choices after the thesis's descriptions (§3.6.2).
+std::vector<ArmKey> gesture_keys(const std::string& name) {
+  const ArmKey rest0{0.0, 0.08, 0.0, 0.0, -0.12}, rest1{1.0, 0.08, 0.0, 0.0, -0.12};
+  if (name == "raise") {
+    return {rest0,
+            {0.12, 0.08, 0.0, 0.0, -0.12},
+            {0.40, 1.60, -0.20, 0.0, -0.30},
+            {0.60, 1.60, -0.20, 0.0, -0.30},
+            {0.90, 0.08, 0.0, 0.0, -0.12},
+            rest1};
+  }
+  if (name == "joy") {
+    return {rest0,
+            {0.10, 0.08, 0.0, 0.0, -0.12},
+            {0.30, 0.60, -1.40, 0.30, -1.60},
+            {0.40, 0.90, -1.75, 0.20, -0.90},
+            {0.55, 0.50, -1.30, 0.30, -1.80},
+            {0.85, 0.08, 0.0, 0.0, -0.12},
+            rest1};
+  }
+  if (name == "exclaim") {
+    return {rest0,
+            {0.10, 0.08, 0.0, 0.0, -0.12},
+            {0.30, 0.50, -0.90, -0.80, -0.60},
+            {0.50, 0.90, -0.50, -0.40, -0.30},
+            {0.70, 0.30, -1.10, -0.90, -1.20},
+            {0.90, 0.08, 0.0, 0.0, -0.12},
+            rest1};
+  }
+  if (name == "ask") {
+    return {rest0,
+            {0.10, 0.08, 0.0, 0.0, -0.12},
+            {0.30, 0.15, -1.25, 0.0, -0.35},
+            {0.48, 0.30, -0.60, 0.0, -1.70},
+            {0.66, 0.20, -1.30, 0.0, -0.30},
+            {0.90, 0.08, 0.0, 0.0, -0.12},
+            rest1};
+  }
+  std::string known;
+  for (const auto& g : gesture_names()) known += (known.empty() ? "" : ", ") + g;
+  throw Error("procedural motion: unknown gesture '" + name + "' (expected one of " + known + ")");
+}
+
 struct Gait {
   double stride_s = 1.0;    // one left and one right step
   double stance = 0.6;      // fraction of the stride a foot is on the floor
@@ -63,6 +114,8 @@ class Generator : Rig {
       if (kind == "walk_path" && !(spec_.path_radius > 0)) {
         throw Error("procedural motion: path_radius must be positive");
       }
+    } else if (kind == "arm_gesture") {
+      gesture_ = gesture_keys(spec_.gesture);
     } else if (kind != "stand" && kind != "tpose" && kind != "arm_raise") {
       std::string known;
       for (const auto& k : procedural_kinds()) known += (known.empty() ? "" : ", ") + k;
@@ -83,6 +136,9 @@ class Generator : Rig {
     }
     if (kind == "stand") {
       stand(t, pose);
+    } else if (kind == "arm_gesture") {
+      stand(t, pose);
+      gesture(t, pose);
     } else {
       walk(t, pose);
     }
@@ -210,8 +266,35 @@ class Generator : Rig {
     stand_on(pose, feet, nullptr);
   }
 
+  // The arms at time t along the gesture's keys (smoothstep between keys), the left arm a little
+  // ahead of the right so that the two are never mirror images; the trunk turns and leans a
+  // little with the arms.
+  void gesture(double t, Pose& pose) const {
+    const double u = t / duration();
+    for (int side = 0; side < 2; ++side) {
+      const ArmKey k = arm_at(std::clamp(u - 0.03 * side, 0.0, 1.0));
+      const double mirror = side == 0 ? 1.0 : -1.0;
+      pose.rotations[shoulder_[side]] =
+          rot_z(mirror * k.abduction) * rot_x(k.flexion) * rot_y(mirror * k.twist);
+      pose.rotations[elbow_[side]] = rot_x(k.elbow);
+    }
+    const ArmKey k = arm_at(std::clamp(u, 0.0, 1.0));
+    rotate(pose, chest_, rot_x(-0.08 * k.flexion) * rot_y(0.05 * std::sin(2 * kPi * u)));
+  }
+  ArmKey arm_at(double u) const {
+    size_t i = 1;
+    while (i + 1 < gesture_.size() && gesture_[i].at < u) ++i;
+    const ArmKey& a = gesture_[i - 1];
+    const ArmKey& b = gesture_[i];
+    const double w = smoothstep((u - a.at) / std::max(1e-9, b.at - a.at));
+    return {u, a.abduction + w * (b.abduction - a.abduction),
+            a.flexion + w * (b.flexion - a.flexion), a.twist + w * (b.twist - a.twist),
+            a.elbow + w * (b.elbow - a.elbow)};
+  }
+
   ProceduralSpec spec_;
   Gait gait_;
+  std::vector<ArmKey> gesture_;
 };
 
 }  // namespace
@@ -219,12 +302,17 @@ class Generator : Rig {
 const std::vector<std::string>& procedural_kinds() {
   static const std::vector<std::string> kinds = [] {
     std::vector<std::string> k = {"stand",     "tpose", "walk_in_place", "walk_path",
-                                  "arm_raise", "turn",  "turnaround"};
+                                  "arm_raise", "turn",  "turnaround",    "arm_gesture"};
     k.insert(k.end(), action_kinds().begin(), action_kinds().end());
     k.push_back("gestures");
     return k;
   }();
   return kinds;
+}
+
+const std::vector<std::string>& gesture_names() {
+  static const std::vector<std::string> names = {"raise", "joy", "exclaim", "ask"};
+  return names;
 }
 
 Motion generate_procedural(const ProceduralSpec& spec, const Skeleton& skeleton, double fps) {

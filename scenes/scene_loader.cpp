@@ -463,6 +463,16 @@ MotionSource SceneReader::read_motion(const Field& f) const {
           .fail((at != given.end() ? "" : "the default " + problem->key + " of " + p.kind + " ") +
                 problem->message);
     }
+    if (p.kind == "arm_gesture") {
+      if (auto v = m.take("gesture")) {
+        const auto& names = gesture_names();
+        if (!v->is_scalar() ||
+            std::find(names.begin(), names.end(), v->node().Scalar()) == names.end()) {
+          v->expected("one of " + scene_names::one_of(names));
+        }
+        p.gesture = v->node().Scalar();
+      }
+    }
   }
   m.finish();
   return src;

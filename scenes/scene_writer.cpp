@@ -171,6 +171,8 @@ void write_motion(YAML::Emitter& out, const MotionSource& m) {
       out << YAML::Key << "gesture_size" << YAML::Value << YAML::Flow << YAML::BeginSeq
           << yaml::format_number(g.min_size) << yaml::format_number(g.max_size) << YAML::EndSeq;
       number(out, "transition_speed", g.transition_speed);
+    } else if (m.procedural.kind == "arm_gesture") {
+      out << YAML::Key << "gesture" << YAML::Value << m.procedural.gesture;
     }
   }
   out << YAML::EndMap;

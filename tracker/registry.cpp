@@ -17,6 +17,8 @@ TrackSummary run_moschini_family(const fs::path& dataset, const fs::path& out,
   MoschiniOptions m = o.moschini;
   m.init = o.init;
   m.silhouettes = o.silhouettes;
+  m.inspect = o.inspect;
+  m.oracle = o.oracle;
   m.quiet = o.quiet;
   return track_moschini(dataset, out, m);
 }
@@ -25,8 +27,21 @@ TrackSummary run_sik_family(const fs::path& dataset, const fs::path& out, const 
   SikTrackOptions s = o.sik;
   s.init = o.init;
   s.silhouettes = o.silhouettes;
+  s.seed = o.seed;
   s.quiet = o.quiet;
   return track_sik(dataset, out, s);
+}
+
+TrackSummary run_monocular_family(const fs::path& dataset, const fs::path& out,
+                                  const TrackOptions& o) {
+  MonocularOptions m = o.monocular;
+  m.init = o.init;
+  m.silhouettes = o.silhouettes;
+  m.tracker.filter.seed = o.seed;
+  m.inspect = o.inspect;
+  m.oracle = o.oracle;
+  m.quiet = o.quiet;
+  return track_monocular(dataset, out, m);
 }
 
 constexpr std::array kFamilies{
@@ -56,6 +71,17 @@ constexpr std::array kFamilies{
                     return n;
                   },
                   run_sik_family},
+    TrackerFamily{TrackMethod::monocular,
+                  "one camera: render-and-compare particle filter (Gomez Jauregui 2011)",
+                  [](const TrackOptions& o) {
+                    // The colour classes come from the colour frames; --init gt sizes and poses
+                    // the body from the first frame's ground truth.
+                    DatasetNeeds n;
+                    n.colour = true;
+                    n.ground_truth = o.init == InitMethod::gt || o.oracle;
+                    return n;
+                  },
+                  run_monocular_family},
 };
 
 std::string method_name(TrackMethod m) {
@@ -66,6 +92,11 @@ std::string method_name(TrackMethod m) {
 
 std::span<const TrackerFamily> tracker_families() {
   return kFamilies;
+}
+
+TrackMethod resolve_method(TrackMethod method, const Dataset& dataset) {
+  if (method != TrackMethod::automatic) return method;
+  return dataset.camera_count() >= 2 ? TrackMethod::moschini : TrackMethod::monocular;
 }
 
 const TrackerFamily& tracker_family(TrackMethod method) {
@@ -96,7 +127,9 @@ std::string missing_for(const DatasetNeeds& needs, const Dataset& dataset) {
 }
 
 TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
-                           const TrackOptions& options) {
+                           const TrackOptions& given) {
+  TrackOptions options = given;
+  options.method = resolve_method(given.method, Dataset(dataset));
   const TrackerFamily& family = tracker_family(options.method);
   {
     const Dataset ds(dataset);

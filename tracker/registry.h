@@ -29,15 +29,21 @@ struct TrackerFamily {
                       const TrackOptions&);
 };
 
+// Every family (TrackMethod::automatic is none: it stands for one of them).
 std::span<const TrackerFamily> tracker_families();
 const TrackerFamily& tracker_family(TrackMethod method);
+
+// `method`, or for TrackMethod::automatic the family that suits the dataset: moschini with two
+// cameras or more, monocular with one.
+TrackMethod resolve_method(TrackMethod method, const Dataset& dataset);
 
 // Empty when `dataset` has all that `needs` asks for, else what it lacks ("1 camera, needs at
 // least 2"; "no gt/joints3d.csv").
 std::string missing_for(const DatasetNeeds& needs, const Dataset& dataset);
 
-// Runs options.method over `dataset` into `out` after checking that the dataset suits it; a
-// dataset that does not is an Error saying what it lacks and which methods would take it.
+// Runs options.method (resolved) over `dataset` into `out` after checking that the dataset
+// suits it; a dataset that does not is an Error saying what it lacks and which methods would
+// take it.
 TrackSummary track_dataset(const std::filesystem::path& dataset, const std::filesystem::path& out,
                            const TrackOptions& options);
 

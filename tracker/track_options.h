@@ -2,28 +2,42 @@
 // family's own typed options (the command line fills them; the libraries never parse text).
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include "core/name_table.h"
 #include "tracker/common/init_method.h"
+#include "tracker/common/silhouettes.h"
+#include "tracker/gomez/monocular_job.h"
 #include "tracker/moschini/moschini_job.h"
 #include "tracker/track_export.h"
 #include "tracker/unzueta/sik_track_job.h"
 
 namespace simcap::tracker {
 
-enum class TrackMethod { moschini, sik };
-inline constexpr NameTable<TrackMethod, 2> kTrackMethods{
-    {{"moschini", TrackMethod::moschini}, {"sik", TrackMethod::sik}}};
+// automatic: the family that suits the dataset's cameras (registry.h, resolve_method).
+enum class TrackMethod { automatic, moschini, sik, monocular };
+inline constexpr NameTable<TrackMethod, 4> kTrackMethods{{{"auto", TrackMethod::automatic},
+                                                          {"moschini", TrackMethod::moschini},
+                                                          {"sik", TrackMethod::sik},
+                                                          {"monocular", TrackMethod::monocular}}};
 
 struct TrackOptions {
-  TrackMethod method = TrackMethod::moschini;
+  TrackMethod method = TrackMethod::automatic;
   // Options every family shares; the registry hands them to the family that runs.
   InitMethod init = InitMethod::gt;
-  SilhouetteMethod silhouettes = SilhouetteMethod::gt;  // moschini; sik from pixels (pelvis)
+  SilhouetteMethod silhouettes = SilhouetteMethod::gt;  // moschini, monocular; sik from pixels (pelvis)
+  std::uint64_t seed = 1;                               // sik's noise, monocular's particles
+  std::vector<int> inspect;  // frames to lay open in diagnostics/inspect/ (moschini, monocular)
+  // Every frame starts from its ground-truth pose (moschini, monocular): a diagnostic of the
+  // error the body model and the cues leave without the search's.
+  bool oracle = false;
   bool quiet = false;
   // Formats the track's motion is also written in (TRACK/motion.bvh, motion.x3d).
   std::vector<MotionExport> exports;
   MoschiniOptions moschini;
   SikTrackOptions sik;
+  MonocularOptions monocular;
 };
 
 }  // namespace simcap::tracker

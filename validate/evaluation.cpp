@@ -100,6 +100,8 @@ Evaluation evaluate(const EvaluationInput& in, const EvaluationOptions& options)
   std::vector<std::vector<double>> joint_err(joints), joint_pa(joints);
   std::vector<std::vector<double>> by_cameras(in.views.empty() ? 0 : in.camera_count + 1);
   std::vector<std::vector<double>> by_occlusion(in.views.empty() ? 0 : 3);
+  std::vector<std::vector<double>> joint_along(joints), joint_across(joints);
+  std::vector<double> all_along, all_across;
   for (size_t f = 0; f < frames; ++f) {
     const Eigen::VectorXd d = kMm * joint_distances(in.truth[f], in.estimate[f]);
     const Eigen::VectorXd pa =
@@ -109,6 +111,15 @@ Evaluation evaluate(const EvaluationInput& in, const EvaluationOptions& options)
       all_pa.push_back(pa[j]);
       joint_err[j].push_back(d[j]);
       joint_pa[j].push_back(pa[j]);
+      if (in.camera_centre) {
+        const Eigen::Vector3d ray = (in.truth[f].col(j) - *in.camera_centre).normalized();
+        const Eigen::Vector3d e = in.estimate[f].col(j) - in.truth[f].col(j);
+        const double along = e.dot(ray);
+        joint_along[j].push_back(kMm * std::abs(along));
+        joint_across[j].push_back(kMm * (e - along * ray).norm());
+        all_along.push_back(joint_along[j].back());
+        all_across.push_back(joint_across[j].back());
+      }
       if (!in.views.empty()) {
         const JointSight& v = in.views[f][j];
         by_cameras.at(std::clamp(v.visible_cameras, 0, in.camera_count)).push_back(d[j]);
@@ -126,10 +137,18 @@ Evaluation evaluate(const EvaluationInput& in, const EvaluationOptions& options)
   std::vector<double> rmse;
   for (size_t j = 0; j < joints; ++j) {
     const auto& e = joint_err[j];
-    ev.per_joint.push_back({in.joints[j], mean_value(e), mean_value(joint_pa[j]),
-                            root_mean_square(e), *std::max_element(e.begin(), e.end())});
+    ev.per_joint.push_back({in.joints[j],
+                            mean_value(e),
+                            mean_value(joint_pa[j]),
+                            root_mean_square(e),
+                            *std::max_element(e.begin(), e.end()),
+                            {}});
     rmse.push_back(ev.per_joint.back().rmse_mm);
+    if (in.camera_centre) {
+      ev.per_joint.back().ray = RaySplit{mean_value(joint_along[j]), mean_value(joint_across[j])};
+    }
   }
+  if (in.camera_centre) ev.ray = RaySplit{mean_value(all_along), mean_value(all_across)};
   ev.rmse_mean_mm = mean_value(rmse);
 
   std::vector<double> angle_rmse;

@@ -29,6 +29,9 @@ struct EvaluationInput {
   // VisibilityLabel per frame and joint ([f][j]); empty when not known.
   int camera_count = 0;
   std::vector<std::vector<JointSight>> views;
+  // The camera's centre (world, metres) when the dataset has one camera: errors are then split
+  // along and across its rays (depth ambiguity).
+  std::optional<Eigen::Vector3d> camera_centre;
   // Joint rotations both sides have ([f][k]); empty when the tracker wrote no angles.
   std::vector<std::string> angle_joints;
   std::vector<std::vector<Eigen::Quaterniond>> truth_rotations, estimate_rotations;
@@ -39,9 +42,16 @@ struct EvaluationOptions {
   std::vector<double> pck_thresholds_mm = {50.0, 100.0, 150.0};
 };
 
+// One joint's error split by the single camera's ray through its true position: the component
+// along the ray (depth, what one view cannot see) and the one across it (the image plane).
+struct RaySplit {
+  double along_mm = 0, across_mm = 0;  // means of the components' magnitudes
+};
+
 struct JointScore {
   std::string joint;
   double mpjpe_mm = 0, pa_mpjpe_mm = 0, rmse_mm = 0, max_mm = 0;
+  std::optional<RaySplit> ray;  // with EvaluationInput::camera_centre
 };
 
 struct FrameScore {
@@ -83,6 +93,7 @@ struct Evaluation {
   std::vector<PckScore> pck;
   double rmse_mean_mm = 0;      // mean over joints of the per-point RMSE (Moschini Table 7.2)
   double wrists_elbows_mm = 0;  // mean error over l/r elbow and wrist (Gomez, after Balan)
+  std::optional<RaySplit> ray;  // over all joint-frames, with EvaluationInput::camera_centre
   std::vector<JointScore> per_joint;
   std::vector<FrameScore> per_frame;
   std::vector<AngleScore> angles;  // empty when no angles were compared

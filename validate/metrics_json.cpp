@@ -56,13 +56,20 @@ Json metrics_to_json(const Evaluation& ev, const std::string& dataset, const std
   }
   j["rmse_mean_mm"] = mm(ev.rmse_mean_mm);
   j["wrists_elbows_mm"] = mm(ev.wrists_elbows_mm);
+  // One camera: the error's mean components along and across its rays; null otherwise.
+  const auto ray = [&](const std::optional<RaySplit>& r) -> Json {
+    if (!r) return nullptr;
+    return {{"along_mm", mm(r->along_mm)}, {"across_mm", mm(r->across_mm)}};
+  };
+  j["camera_ray"] = ray(ev.ray);
   j["per_joint"] = Json::array();
   for (const auto& s : ev.per_joint) {
     j["per_joint"].push_back({{"joint", s.joint},
                               {"mpjpe_mm", mm(s.mpjpe_mm)},
                               {"pa_mpjpe_mm", mm(s.pa_mpjpe_mm)},
                               {"rmse_mm", mm(s.rmse_mm)},
-                              {"max_mm", mm(s.max_mm)}});
+                              {"max_mm", mm(s.max_mm)},
+                              {"camera_ray", ray(s.ray)}});
   }
   j["per_frame"] = Json::array();
   for (const auto& s : ev.per_frame) {

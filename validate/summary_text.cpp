@@ -30,6 +30,10 @@ std::string metrics_summary_text(const Evaluation& ev) {
   }
   line(s, "per-point RMSE (mean over joints)", "%.1f", ev.rmse_mean_mm, "mm");
   line(s, "wrists and elbows", "%.1f", ev.wrists_elbows_mm, "mm");
+  if (ev.ray) {
+    line(s, "along the camera rays (depth)", "%.1f", ev.ray->along_mm, "mm");
+    line(s, "across the camera rays (image)", "%.1f", ev.ray->across_mm, "mm");
+  }
   if (!ev.angles.empty()) line(s, "joint-angle RMSE", "%.3f", ev.angle_rmse_mean_rad, "rad");
   char name[64];
   std::snprintf(name, sizeof name, "failed frames (> %.0f mm)", ev.failures.threshold_mm);

@@ -4,11 +4,11 @@
 
 #include <algorithm>
 
+#include "core/angle_track.h"
 #include "core/calibration.h"
 #include "core/error.h"
 #include "core/joint_track.h"
 #include "models/humanoid.h"
-#include "core/angle_track.h"
 #include "validate/visibility.h"
 
 namespace simcap {
@@ -235,6 +235,7 @@ ValidationInputs load_validation_inputs(const fs::path& dataset, const fs::path&
     in.estimate.push_back(frame_matrix(est, f, in.joints, est_file));
   }
   add_visibility(dataset / "gt" / "joints2d.csv", out.cameras, in);
+  if (out.cameras.size() == 1) in.camera_centre = out.cameras.front().centre();
   if (fs::exists(track / "angles.csv")) {
     add_angles(dataset / "gt" / "angles.csv", track / "angles.csv", in);
   }

@@ -45,6 +45,7 @@ LoopResult run_closed_loop(const LoopRun& run, const fs::path& out) {
     r.dataset = run.existing_dataset;
   }
 
+  track.method = tracker::resolve_method(track.method, tracker::Dataset(r.dataset));
   announce(run.quiet, 2, ("track (" + track_options_text(track) + ")").c_str());
   t = std::chrono::steady_clock::now();
   r.track = tracker::track_dataset(r.dataset, out / "track", track);

@@ -42,6 +42,7 @@ void add_demo(CLI::App& app, Action& action) {
       "demo", "Run the closed loop (render, track, validate) on the built-in default scene");
   static DemoArgs args;
   args.run.render.frames = kDemoFrames;
+  args.run.track.method = tracker::TrackMethod::moschini;
   cmd->add_option("-o,--output", args.out, "Output folder: dataset/, track/, report/")
       ->capture_default_str();
   add_loop_options(cmd, args.run, args.cli);

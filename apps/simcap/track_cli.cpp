@@ -12,7 +12,7 @@ namespace simcap::cli {
 namespace {
 
 // Sweep keys and the options they set (sweep files name the voxel and noise with their unit).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 13> kSweepKeys{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 22> kSweepKeys{{
     {"method", "--method"},
     {"silhouettes", "--silhouettes"},
     {"init", "--init"},
@@ -26,7 +26,53 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 13> kSweepKe
     {"camera", "--camera"},
     {"sik_noise_m", "--sik-noise"},
     {"seed", "--seed"},
+    {"body", "--body"},
+    {"search", "--search"},
+    {"particles", "--particles"},
+    {"heuristics", "--heuristics"},
+    {"smoothing", "--smoothing"},
+    {"region_combine", "--region-combine"},
+    {"work_height", "--work-height"},
+    {"diffusion", "--diffusion"},
+    {"floor", "--floor"},
 }};
+
+// "h1,h3", "all" or "none" -> the particle filter's switches; an error message otherwise.
+std::string parse_heuristics(const std::string& text, tracker::gomez::FilterOptions* f) {
+  bool on[5] = {false, false, false, false, false};
+  if (text == "all") {
+    for (bool& b : on) b = true;
+  } else if (text != "none") {
+    size_t start = 0;
+    while (start <= text.size()) {
+      const size_t end = std::min(text.find(',', start), text.size());
+      const std::string word = text.substr(start, end - start);
+      if (word.size() != 2 || word[0] != 'h' || word[1] < '1' || word[1] > '5') {
+        return "unknown heuristic '" + word + "' (expected h1 to h5, all or none)";
+      }
+      on[word[1] - '1'] = true;
+      start = end + 1;
+    }
+  }
+  if (f) {
+    f->h1_resampling = on[0];
+    f->h2_partitioned = on[1];
+    f->h3_simplex = on[2];
+    f->h4_flipping = on[3];
+    f->h5_end_effector = on[4];
+  }
+  return {};
+}
+
+std::string heuristics_text(const tracker::gomez::FilterOptions& f) {
+  const bool on[5] = {f.h1_resampling, f.h2_partitioned, f.h3_simplex, f.h4_flipping,
+                      f.h5_end_effector};
+  std::string s;
+  for (int i = 0; i < 5; ++i) {
+    if (on[i]) s += (s.empty() ? "h" : ",h") + std::to_string(i + 1);
+  }
+  return s.empty() ? "none" : s == "h1,h2,h3,h4,h5" ? "all" : s;
+}
 
 std::string method_help() {
   std::string help = "Tracker:";
@@ -44,12 +90,13 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
   using namespace tracker;
   add_choice(cmd, "--method", o.method, kTrackMethods, method_help());
   add_choice(cmd, "--silhouettes", o.silhouettes, kSilhouetteMethods,
-             "Silhouettes (moschini; sik from pixels, for the pelvis): gt (the dataset's masks), "
-             "bgsub (Gaussian background model), mog2 (OpenCV MOG2)");
+             "Silhouettes (moschini, monocular; sik from pixels, for the pelvis): gt (the "
+             "dataset's masks), bgsub (Gaussian background model), mog2 (OpenCV MOG2)");
   add_choice(cmd, "--init", o.init, kInitMethods,
              "First pose: gt (ground truth of the first frame; sik from pixels: the part labels "
              "and the truth's body) or auto (moschini: the hull of a person standing upright; "
-             "sik: the calibration posture, hands raised beside the head, facing the camera)");
+             "monocular: an upright person facing the camera; sik: the calibration posture, hands "
+             "raised beside the head, facing the camera)");
   cmd->add_option("--voxel", o.moschini.voxel_m, "moschini: visual hull voxel size, metres")
       ->check(CLI::Range(0.005, 0.2))
       ->capture_default_str();
@@ -73,9 +120,9 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
                   "models/assets/humanoid_limits.urdf); default: the dataset scene's "
                   "actors[0].limits, else that file")
       ->check(CLI::ExistingFile);
-  cmd->add_flag("--oracle", o.moschini.oracle,
-                "moschini: start every frame from its ground-truth pose (a diagnostic: the error "
-                "left is the body model's and the cues', not the search's)");
+  cmd->add_flag("--oracle", o.oracle,
+                "moschini, monocular: start every frame from its ground-truth pose (a diagnostic: "
+                "the error left is the body model's and the cues', not the search's)");
   add_choice(cmd, "--effectors", o.sik.effectors, kEffectorSources,
              "sik: where the end-effectors come from: gt (the ground truth), depth (tracked in "
              "one camera, lifted by its depth map), mono (one camera, pseudo-3D), multiview (every "
@@ -101,19 +148,61 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
              }
            }
          },
-         "Also write the tracked motion as TRACK/motion.bvh and/or motion.x3d (X3D H-Anim "
-         "HAnimMotion), comma-separated: " +
-             choices_text(kMotionExports) + "; simcap's humanoid sized to the track")
+         "Also write the tracked motion as TRACK/motion.bvh, motion.x3d (X3D H-Anim "
+         "HAnimMotion) and/or motion.bap (MPEG-4 BAPs), comma-separated: " +
+             choices_text(kMotionExports) +
+             "; simcap's humanoid sized to the track (monocular writes its own body's "
+             "motion.bvh and motion.bap)")
       ->delimiter(',')
       ->check(CLI::IsMember(export_names));
+  gomez::MonocularSettings& m = o.monocular.tracker;
+  add_choice(cmd, "--body", m.body, gomez::kBodyKinds,
+             "monocular: the tracked body, full (root, trunk, neck, arms, legs) or upper (the "
+             "thesis's 20 angles of trunk, neck and arms; root and legs keep the first pose)");
+  add_choice(cmd, "--floor", m.floor, kOnOff,
+             "monocular: on (the full body's lowest sole stays on the floor y = 0: the root's "
+             "height follows the legs) or off (the root's height is free)");
+  add_choice(cmd, "--search", m.search, gomez::kSearches,
+             "monocular: particles (the particle filter of thesis ch. 4) or simplex (ch. 3: "
+             "Nelder-Mead from the previous pose, regions then edges)");
+  cmd->add_option("--particles", m.filter.particles, "monocular: particles of the filter")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option_function<std::string>(
+         "--heuristics", [&m](const std::string& text) { parse_heuristics(text, &m.filter); },
+         "monocular: the particle filter's heuristics that are on, comma-separated: h1 "
+         "(deterministic resampling), h2 (partitioned diffusion), h3 (Nelder-Mead children), h4 "
+         "(kinematic flipping), h5 (wrists as end-effectors); or all, none")
+      ->check(
+          CLI::Validator([](std::string& text) { return parse_heuristics(text, nullptr); }, "LIST"))
+      ->default_str(heuristics_text(m.filter));
+  cmd->add_option("--smoothing", m.smoothing,
+                  "monocular: output smoothing a of the angles, theta* = a theta*_prev + (1 - a) "
+                  "theta (thesis: 0.6; 0: off)")
+      ->check(CLI::Range(0.0, 0.99))
+      ->capture_default_str();
+  add_choice(cmd, "--region-combine", m.score.combine, gomez::kRegionCombines,
+             "monocular: how the colour classes' non-overlap ratios add up: root_sum (the "
+             "thesis's printed eq. 2.5), mean, or pixels (all classes' pixels together)");
+  cmd->add_option("--work-height", m.cues.work_height,
+                  "monocular: the person's height in pixels at the working resolution")
+      ->check(CLI::Range(24, 2000))
+      ->capture_default_str();
+  cmd->add_option("--diffusion", m.filter.diffusion,
+                  "monocular: scale S of the particles' random diffusion (eq. 4.13)")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
   if (scope == TrackOptionScope::loop) return;
-  cmd->add_option("--inspect", o.moschini.inspect,
-                  "moschini: frames to lay open, comma-separated: per camera an image with the "
-                  "silhouette's edge, centerline, capsule outlines and sticks drawn, and the "
-                  "hull's voxels (diagnostics/inspect/FRAME/)")
+  cmd->add_option("--inspect", o.inspect,
+                  "Frames to lay open, comma-separated, in diagnostics/inspect/: moschini, per "
+                  "camera an image with the silhouette's edge, centerline, capsule outlines and "
+                  "sticks drawn, and the hull's voxels (FRAME/); monocular, the working crop, its "
+                  "colour classes, the model's classes and contour, and the edge distance map "
+                  "(FRAME.png)")
       ->delimiter(',')
       ->check(non_negative_number());
-  cmd->add_option("--seed", o.sik.seed, "sik: seed of that noise")->capture_default_str();
+  cmd->add_option("--seed", o.seed, "sik: seed of that noise; monocular: seed of the particles")
+      ->capture_default_str();
   cmd->add_flag("-q,--quiet", o.quiet, "No progress on stderr");
 }
 
@@ -145,10 +234,18 @@ void apply_sweep_track_options(const std::vector<std::pair<std::string, std::str
 std::string track_options_text(const tracker::TrackOptions& o) {
   using namespace tracker;
   std::string s(name_of(kTrackMethods, o.method));
-  if (o.method == TrackMethod::moschini) {
+  if (o.method != TrackMethod::sik) {
     s += ", silhouettes " + std::string(name_of(kSilhouetteMethods, o.silhouettes));
   } else {
     s += ", effectors " + std::string(name_of(kEffectorSources, o.sik.effectors));
+  }
+  if (o.method == TrackMethod::monocular) {
+    const gomez::MonocularSettings& m = o.monocular.tracker;
+    s += ", body " + std::string(name_of(gomez::kBodyKinds, m.body)) + ", " +
+         (m.search == gomez::Search::particles
+              ? std::to_string(m.filter.particles) + " particles, heuristics " +
+                    heuristics_text(m.filter)
+              : std::string("simplex"));
   }
   return s + ", init " + std::string(name_of(kInitMethods, o.init));
 }

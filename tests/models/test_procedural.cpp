@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "models/foot_contact.h"
 #include "models/humanoid.h"
+#include "models/joint_limits.h"
 #include "models/motion_source.h"
 #include "models/pose.h"
 
@@ -164,6 +165,68 @@ TEST(Procedural, ArmPoses) {
   const auto bottom = joint_positions(s, raise.frames[120]);  // the end: down again
   EXPECT_GT(top[hand_tip].y(), top[head].y());
   EXPECT_LT(bottom[hand_tip].y(), s[s.require("r_hip")].center.y());
+}
+
+// The gestures stay within Gomez Jauregui's Table 2-1 (so that his upper body can follow them),
+// start and end with the arms hanging, and move the hands where the thesis's sequences do:
+// "raise" in the frontal plane, "ask" along the depth.
+TEST(Procedural, ArmGestures) {
+  const Skeleton s = build_humanoid();
+  const int wrist = s.require("l_radiocarpal"), chest = s.require("vt1");
+  double frontal[2] = {0, 0}, depth[2] = {0, 0};
+  for (const std::string& g : gesture_names()) {
+    ProceduralSpec spec;
+    spec.kind = "arm_gesture";
+    spec.gesture = g;
+    spec.duration_s = 5.5;
+    const Motion m = generate_procedural(spec, s, 30.0);
+    ASSERT_EQ(m.frames.size(), 166u);
+    for (const Pose& p : m.frames) {
+      for (const JointLimits& j : gomez_joint_limits()) {
+        if (j.joint == "vl5" || j.joint == "skullbase" || j.joint.ends_with("radiocarpal"))
+          continue;
+        // Z-X-Y angles with X in [-pi/2, pi/2], or the other solution (a + pi, -pi - b,
+        // c + pi) when the flexion passes 90 degrees.
+        const auto angles = dof_angles(j, p.rotations[s.require(j.joint)]);
+        std::vector<double> other = angles;
+        if (other.size() == 3) {
+          other = {std::remainder(angles[0] + kPi, 2 * kPi), -kPi - angles[1],
+                   std::remainder(angles[2] + kPi, 2 * kPi)};
+        }
+        const auto inside = [&](const std::vector<double>& a) {
+          for (size_t d = 0; d < a.size(); ++d) {
+            if (a[d] < j.dofs[d].lower - 1e-9 || a[d] > j.dofs[d].upper + 1e-9) return false;
+          }
+          return true;
+        };
+        EXPECT_TRUE(inside(angles) || inside(other)) << g << " " << j.joint;
+      }
+    }
+    const auto first = joint_positions(s, m.frames.front());
+    const auto last = joint_positions(s, m.frames.back());
+    EXPECT_LT((first[wrist] - last[wrist]).norm(), 0.02) << g;
+    double fr = 0, dz = 0;
+    for (const Pose& p : m.frames) {
+      const auto q = joint_positions(s, p);
+      const Eigen::Vector3d d = q[wrist] - q[chest] - (first[wrist] - first[chest]);
+      fr = std::max(fr, std::hypot(d.x(), d.y()));
+      dz = std::max(dz, std::abs(d.z()));
+    }
+    if (g == "raise") {
+      frontal[0] = fr;
+      depth[0] = dz;
+    }
+    if (g == "ask") {
+      frontal[1] = fr;
+      depth[1] = dz;
+    }
+  }
+  EXPECT_GT(frontal[0], 2 * depth[0]);  // raise: in the image plane of a camera in front
+  EXPECT_GT(depth[1], 0.4);             // ask: the hands go forward by 40 cm or more
+  ProceduralSpec bad;
+  bad.kind = "arm_gesture";
+  bad.gesture = "shrug";
+  EXPECT_THROW(generate_procedural(bad, s, 30), Error);
 }
 
 TEST(Procedural, BadSpecsAreErrors) {

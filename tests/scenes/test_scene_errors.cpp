@@ -144,6 +144,8 @@ INSTANTIATE_TEST_SUITE_P(
                 "actors[0].motion.count", "an integer"},
         BadCase{"actors:\n  - motion: {procedural: turnaround, speed: 3}\n", 2,
                 "actors[0].motion.speed", "must be in [0.6, 1.6] m/s"},
+        BadCase{"actors:\n  - motion:\n      procedural: arm_gesture\n      gesture: shrug\n", 4,
+                "actors[0].motion.gesture", "one of raise, joy, exclaim or ask"},
         BadCase{"actors:\n  - motion: {bvh: nowhere.bvh}\n", 2, "actors[0].motion.bvh",
                 "does not exist"},
         BadCase{"actors:\n  - motion: {bvh: asset:nowhere.bvh}\n", 2, "actors[0].motion.bvh",

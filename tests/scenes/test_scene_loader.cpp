@@ -220,9 +220,10 @@ actors:
   - motion: {bvh: asset:cmu_131_01_start_walk_stop.bvh, units: auto}
   - motion: {procedural: walk_path, duration: 3, speed: 0.9, radius: 1.5}
   - motion: {procedural: turn, turn_deg: 90}
+  - motion: {procedural: arm_gesture, gesture: ask, duration: 5.5}
 )");
   const Scene s = load_scene(path);
-  ASSERT_EQ(s.actors.size(), 4u);
+  ASSERT_EQ(s.actors.size(), 5u);
   const Actor& a = s.actors[0];
   EXPECT_EQ(a.name, "alice");
   EXPECT_EQ(a.body.parameters.height, 1.62);
@@ -256,6 +257,8 @@ actors:
   EXPECT_EQ(s.actors[3].motion.procedural.kind, "turn");
   EXPECT_EQ(s.actors[3].motion.procedural.turn_degrees, 90.0);
   EXPECT_EQ(s.actors[3].motion.procedural.duration_s, ProceduralSpec{}.duration_s);
+  EXPECT_EQ(s.actors[4].motion.procedural.kind, "arm_gesture");
+  EXPECT_EQ(s.actors[4].motion.procedural.gesture, "ask");
 }
 
 TEST(SceneLoader, RenderAndNoise) {

@@ -20,8 +20,8 @@ namespace {
 
 using simcap::testing::TempDir;
 
-const std::vector<std::string> kShipped = {"studio4",   "studio8", "occluders",
-                                           "monocular", "x3d_joe", "gestures"};
+const std::vector<std::string> kShipped = {"studio4", "studio8",  "occluders",         "monocular",
+                                           "x3d_joe", "gestures", "monocular_gestures"};
 
 // The actor's joint positions in the room for every frame at the scene's frame rate.
 std::vector<std::vector<Eigen::Vector3d>> world_joints(const Scene& scene, const Actor& actor,

@@ -16,21 +16,34 @@ using testing::TempDir;
 
 TEST(Registry, EveryMethodHasOneFamily) {
   for (const auto& [name, method] : kTrackMethods) {
+    if (method == TrackMethod::automatic) continue;
     int families = 0;
     for (const TrackerFamily& f : tracker_families()) families += f.method == method ? 1 : 0;
     EXPECT_EQ(families, 1) << name;
     EXPECT_FALSE(tracker_family(method).summary.empty()) << name;
   }
-  EXPECT_EQ(tracker_families().size(), kTrackMethods.size());
+  EXPECT_EQ(tracker_families().size(), kTrackMethods.size() - 1);
+}
+
+TEST(Registry, AutomaticPicksTheFamilyForTheCameras) {
+  TempDir dir;
+  testing::write_capsule_dataset(dir / "one", {.frames = 1, .cameras = 1});
+  testing::write_capsule_dataset(dir / "two", {.frames = 1, .cameras = 2});
+  EXPECT_EQ(resolve_method(TrackMethod::automatic, Dataset(dir / "one")), TrackMethod::monocular);
+  EXPECT_EQ(resolve_method(TrackMethod::automatic, Dataset(dir / "two")), TrackMethod::moschini);
+  EXPECT_EQ(resolve_method(TrackMethod::sik, Dataset(dir / "one")), TrackMethod::sik);
 }
 
 TEST(Registry, RefusesADatasetTheMethodCannotUseBeforeWritingAnything) {
   TempDir dir;
   testing::write_capsule_dataset(dir / "one", {.frames = 2, .cameras = 1});
   std::string log;
-  EXPECT_EQ(run_simcap("track " + (dir / "one").string() + " -o " + (dir / "t").string(), &log), 1);
+  EXPECT_EQ(run_simcap("track " + (dir / "one").string() + " -o " + (dir / "t").string() +
+                           " --method moschini",
+                       &log),
+            1);
   EXPECT_NE(log.find("1 camera, needs at least 2 for --method moschini"), std::string::npos) << log;
-  EXPECT_NE(log.find("use --method sik instead"), std::string::npos) << log;
+  EXPECT_NE(log.find("use --method sik, --method monocular instead"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(dir / "t"));
 
   // What the check reads, directly: cameras, colour images, ground truth.

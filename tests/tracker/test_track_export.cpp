@@ -1,9 +1,10 @@
-// `simcap track --export bvh,x3d`: every family's track leaves as BVH and X3D H-Anim files that
-// simcap's own readers (and so Blender's BVH importer and X3D browsers) take back.
+// `simcap track --export bvh,x3d,bap`: every family's track leaves as BVH, X3D H-Anim and MPEG-4
+// BAP files that simcap's own readers (and so Blender's BVH importer and X3D browsers) take back.
 #include <gtest/gtest.h>
 
 #include "core/joint_track.h"
 #include "models/bvh.h"
+#include "models/mpeg4_bap.h"
 #include "models/x3d_humanoid.h"
 #include "tests/support/temp_dir.h"
 #include "tests/tracker/capsule_dataset.h"
@@ -43,15 +44,42 @@ TEST(TrackExport, EveryFamilyWritesBvhAndX3dThatReadBack) {
   }
 }
 
+TEST(TrackExport, BapFramesCarryTheTracksRootAndEveryFrame) {
+  TempDir dir;
+  testing::write_capsule_dataset(dir / "d", {.frames = 4});
+  const fs::path out = dir / "t";
+  std::string log;
+  ASSERT_EQ(run_simcap("track " + (dir / "d").string() + " -o " + out.string() +
+                           " --method sik --export bap --quiet",
+                       &log),
+            0)
+      << log;
+  const JointTrack track = read_joint_track(out / "joints3d.csv");
+  const BapFile bap = read_bap(out / "motion.bap");
+  ASSERT_EQ(static_cast<int>(bap.frames.size()), track.frames.back() - track.frames.front() + 1);
+  const int root = track.joint_index("humanoid_root");
+  for (size_t f = 0; f < track.frames.size(); ++f) {
+    const BapFrame& b = bap.frames[track.frames[f] - track.frames.front()];
+    EXPECT_EQ(b.number, track.frames[f]);
+    const Eigen::Vector3d p(b.values[bap_id("HumanoidRoot_tr_lateral") - 1],
+                            b.values[bap_id("HumanoidRoot_tr_vertical") - 1],
+                            b.values[bap_id("HumanoidRoot_tr_frontal") - 1]);
+    EXPECT_LT((p - track.positions[f][root]).norm(), 1e-3);  // the file holds millimetres
+    for (const char* name : {"l_shoulder_flexion", "r_elbow_flexion", "l_knee_flexion"}) {
+      EXPECT_TRUE(b.mask[bap_id(name) - 1]) << name;
+    }
+  }
+}
+
 TEST(TrackExport, UnknownFormatIsRefusedWithoutOutput) {
   TempDir dir;
   testing::write_capsule_dataset(dir / "d", {.frames = 2});
   std::string log;
   EXPECT_NE(run_simcap("track " + (dir / "d").string() + " -o " + (dir / "t").string() +
-                           " --export bvh,bap",
+                           " --export bvh,fbx",
                        &log),
             0);
-  EXPECT_NE(log.find("bap"), std::string::npos) << log;
+  EXPECT_NE(log.find("fbx"), std::string::npos) << log;
   EXPECT_FALSE(fs::exists(dir / "t"));
 }
 

@@ -79,6 +79,28 @@ TEST(Metrics, TranslationGivesItsLengthAsMpjpe) {
   EXPECT_DOUBLE_EQ(ev.pck[0].fraction, 1.0);  // 50 mm is "at or below" 50 mm
 }
 
+TEST(Metrics, OneCameraSplitsTheErrorAlongAndAcrossItsRays) {
+  const Eigen::Matrix3Xd truth = he15_points();
+  // Every joint moved 30 mm towards a far camera and 40 mm sideways of its ray.
+  const Eigen::Vector3d centre(0.2, 1.1, 1000.0);
+  Eigen::Matrix3Xd est = truth;
+  for (int j = 0; j < truth.cols(); ++j) {
+    const Eigen::Vector3d ray = (truth.col(j) - centre).normalized();
+    const Eigen::Vector3d side = ray.cross(Eigen::Vector3d::UnitY()).normalized();
+    est.col(j) += -0.03 * ray + 0.04 * side;
+  }
+  EvaluationInput in = input_of({truth}, {est});
+  EXPECT_FALSE(evaluate(in).ray);
+  in.camera_centre = centre;
+  const Evaluation ev = evaluate(in);
+  ASSERT_TRUE(ev.ray);
+  EXPECT_NEAR(ev.ray->along_mm, 30.0, 1e-9);
+  EXPECT_NEAR(ev.ray->across_mm, 40.0, 1e-9);
+  EXPECT_NEAR(ev.mpjpe_mm, 50.0, 1e-9);
+  ASSERT_TRUE(ev.per_joint[3].ray);
+  EXPECT_NEAR(ev.per_joint[3].ray->along_mm, 30.0, 1e-9);
+}
+
 TEST(Metrics, PckCountsErrorsAtOrBelowTheThreshold) {
   const std::vector<double> e = {10, 50, 60, 100, 149, 151, 200};
   EXPECT_DOUBLE_EQ(pck(e, 50), 2.0 / 7);

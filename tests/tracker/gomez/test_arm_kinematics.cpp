@@ -1,0 +1,87 @@
+// The body's state <-> pose conversions and the arms' analytic kinematics: state_of inverts pose,
+// kinematic flipping (H4) keeps the elbows' and wrists' projections while moving them in depth,
+// and the end-effector IK (H5) puts the wrist where it is asked.
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "core/camera.h"
+#include "models/humanoid.h"
+#include "tracker/gomez/body.h"
+
+namespace simcap::tracker::gomez {
+namespace {
+
+// A body facing a camera 3 m in front of it, arms bent forward within Table 2-1.
+struct Scene {
+  Skeleton skeleton = build_humanoid();
+  Body body{skeleton, BodyKind::full, Pose::neutral(skeleton), false};
+  Camera camera = Camera::look_at("cam", 640, 480, std::numbers::pi / 3,
+                                  Eigen::Vector3d(0.3, 1.5, 3.0), Eigen::Vector3d(0, 1.1, 0));
+  State x;
+  Scene() {
+    x = body.dofs.clamp(State::Zero(body.dofs.size()));
+    const auto set = [&](const char* name, double v) { x[body.dofs.require(name)] = v; };
+    set("l_shoulder_flexion", -0.7);
+    set("l_shoulder_abduction", 0.4);
+    set("l_elbow_flexion", -1.1);
+    set("r_shoulder_flexion", -0.5);
+    set("r_shoulder_abduction", -0.3);
+    set("r_elbow_flexion", -0.9);
+    x = body.dofs.clamp(x);
+  }
+  Eigen::Vector3d joint(const State& s, const char* name) const {
+    return joint_positions(body.skeleton, body.dofs.pose(s))[body.skeleton.require(name)];
+  }
+};
+
+TEST(BodyDofs, StateOfInvertsPose) {
+  const Scene s;
+  State y = s.x;
+  y[s.body.dofs.require("l_shoulder_twist")] = 0.2;
+  y[s.body.dofs.require("r_radiocarpal_twist")] = -0.4;
+  y[s.body.dofs.require("root_turn")] += 0.3;
+  y = s.body.dofs.clamp(y);
+  const State back = s.body.dofs.state_of(s.body.dofs.pose(y), s.x);
+  EXPECT_LT((back - y).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+TEST(ArmKinematics, FlippingKeepsTheProjectionsAndMovesInDepth) {
+  const Scene s;
+  const Eigen::Vector3d c = s.camera.centre();
+  const std::vector<State> flips = s.body.arms.flips(s.x, c);
+  ASSERT_FALSE(flips.empty());
+  EXPECT_LE(flips.size(), 15u);
+  int moved = 0;
+  for (const State& y : flips) {
+    EXPECT_TRUE(s.body.dofs.inside(y, 1e-6));
+    for (const char* name : {"l_elbow", "l_radiocarpal", "r_elbow", "r_radiocarpal"}) {
+      const Eigen::Vector3d before = s.joint(s.x, name), after = s.joint(y, name);
+      EXPECT_LT((*s.camera.project(before) - *s.camera.project(after)).norm(), 1e-6) << name;
+      if ((after - c).norm() - (before - c).norm() > 0.01) ++moved;
+      if ((after - c).norm() - (before - c).norm() < -0.01) ++moved;
+    }
+    // The limbs keep their lengths: the shoulders do not move.
+    EXPECT_LT((s.joint(y, "l_shoulder") - s.joint(s.x, "l_shoulder")).norm(), 1e-9);
+  }
+  EXPECT_GE(moved, static_cast<int>(flips.size()));
+}
+
+TEST(ArmKinematics, EndEffectorSolvePutsTheWristWhereAsked) {
+  const Scene s;
+  for (int side = 0; side < 2; ++side) {
+    const ArmPoints a = s.body.arms.points(s.x, side);
+    // A wrist target 6 cm away, the elbow on its swivel circle at the current swivel.
+    const Eigen::Vector3d target = a.wrist + Eigen::Vector3d(0.03, 0.04, -0.03);
+    const auto elbow = s.body.arms.swivel_elbow(a, target, s.body.arms.swivel(a));
+    ASSERT_TRUE(elbow);
+    State y = s.x;
+    ASSERT_TRUE(s.body.arms.solve(y, side, *elbow, target));
+    const ArmPoints b = s.body.arms.points(y, side);
+    EXPECT_LT((b.wrist - target).norm(), 1e-6);
+    EXPECT_LT((b.elbow - *elbow).norm(), 1e-6);
+  }
+}
+
+}  // namespace
+}  // namespace simcap::tracker::gomez

@@ -1,0 +1,91 @@
+// The monocular tracker's frame loop (monocular_tracker.h).
+#include "tracker/gomez/monocular_tracker.h"
+
+#include <chrono>
+
+#include "models/pose.h"
+#include "tracker/common/mask_box.h"
+
+namespace simcap::tracker::gomez {
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+ColourClasses learn_colours(const Body& body, const State& x, const Camera& camera,
+                            const cv::Mat& image, const cv::Mat& silhouette,
+                            const ColourOptions& options) {
+  const auto world = forward_kinematics(body.skeleton, body.dofs.pose(x));
+  const cv::Rect box = (body_box(body.shape, world, camera) | mask_box(silhouette)) &
+                       cv::Rect(0, 0, image.cols, image.rows);
+  const View view{&camera, box.x, box.y, 1, box.width, box.height};
+  LabelImage cells;
+  render_labels(body.shape, world, view, cells);
+  return ColourClasses(image, silhouette, cells, view, body.shape, options);
+}
+
+MonocularTracker::MonocularTracker(std::unique_ptr<Body> body, const State& x0,
+                                   const Camera& camera, const cv::Mat& image,
+                                   const cv::Mat& silhouette, const MonocularSettings& options)
+    : body_(std::move(body)), camera_(&camera), options_(options), x0_(x0) {
+  classes_ = learn_colours(*body_, x0, camera, image, silhouette, options.colours);
+  scorer_ =
+      std::make_unique<PoseScorer>(body_->dofs, body_->shape, classes_.cell_class(), options.score);
+  filter_ = std::make_unique<ParticleFilter>(*scorer_, &body_->arms, options.filter);
+}
+
+TrackedFrame MonocularTracker::track(const cv::Mat& image, const cv::Mat& silhouette, int frame,
+                                     const State* start) {
+  TrackedFrame out;
+  if (start && started_) {
+    estimate_ = *start;
+    if (options_.search == Search::particles) filter_->reset(*start, previous_);
+  }
+  auto t = std::chrono::steady_clock::now();
+  const State& last = started_ ? estimate_ : x0_;
+  const cv::Rect hint =
+      body_box(body_->shape, forward_kinematics(body_->skeleton, body_->dofs.pose(last)), *camera_);
+  FrameCues cues = make_cues(*camera_, image, silhouette, classes_, hint, options_.cues);
+  out.cues_ms = ms_since(t);
+  if (start) {
+    out.start_score = scorer_->score(*start, cues);
+  }
+  t = std::chrono::steady_clock::now();
+  if (!started_) {
+    started_ = true;
+    out.estimate = x0_;
+    out.score = scorer_->score(x0_, cues);
+    out.evaluations = 1;
+    if (options_.search == Search::particles) filter_->reset(x0_, cues);
+  } else if (options_.search == Search::particles) {
+    out.filter = filter_->step(previous_, cues, frame);
+    out.estimate = out.filter.best;
+    out.score = out.filter.score;
+    out.evaluations = out.filter.evaluations;
+  } else {
+    const Registered r = register_pose(*scorer_, cues, estimate_, options_.registration);
+    out.estimate = r.x;
+    out.score = r.score;
+    out.evaluations = r.evaluations;
+  }
+  out.search_ms = ms_since(t);
+  estimate_ = out.estimate;
+  if (output_.size() == 0 || !(options_.smoothing > 0)) {
+    output_ = out.estimate;
+  } else {
+    const BodyDofs& dofs = body_->dofs;
+    for (int i = 0; i < dofs.size(); ++i) {
+      output_[i] = dofs[i].translation ? out.estimate[i]
+                                       : options_.smoothing * output_[i] +
+                                             (1 - options_.smoothing) * out.estimate[i];
+    }
+  }
+  out.output = output_;
+  previous_ = std::move(cues);
+  return out;
+}
+
+}  // namespace simcap::tracker::gomez

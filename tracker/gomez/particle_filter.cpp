@@ -1,0 +1,301 @@
+// The particle filter with heuristics H1-H5 (particle_filter.h).
+#include "tracker/gomez/particle_filter.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+#include "models/pose.h"
+#include "tracker/gomez/nelder_mead.h"
+
+namespace simcap::tracker::gomez {
+namespace {
+
+std::uint64_t mix(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+bool is_arm_chain(const BodyDofs& dofs, int i) {
+  const std::string& joint = dofs.skeleton()[dofs[i].joint].name;
+  return joint.ends_with("_shoulder") || joint.ends_with("_elbow");
+}
+
+}  // namespace
+
+// One random stream per (seed, frame, stream): the filter's result does not depend on which
+// thread handled which group.
+struct ParticleFilter::Rng {
+  Rng(std::uint64_t seed, int frame, std::uint64_t stream)
+      : engine(mix(mix(seed) ^ mix(static_cast<std::uint64_t>(frame) + 0x51ed) ^ mix(stream))) {}
+  double normal() { return gauss(engine); }
+  std::mt19937_64 engine;
+  std::normal_distribution<double> gauss;
+};
+
+ParticleFilter::ParticleFilter(const PoseScorer& scorer, const ArmKinematics* arms,
+                               const FilterOptions& options)
+    : scorer_(&scorer), arms_(arms), options_(options) {}
+
+void ParticleFilter::reset(const State& x0, const FrameCues& cues) {
+  const Energy e = scorer_->energy_of(x0, cues);
+  particles_.assign(std::max(1, options_.particles), x0);
+  energies_.assign(particles_.size(), e.total());
+  best_ = x0;
+  previous_best_ = State();
+}
+
+State ParticleFilter::diffuse(const State& x, const std::array<bool, kPartCount>& parts, Rng& rng,
+                              const Eigen::Matrix3d& camera_to_world) const {
+  const BodyDofs& dofs = scorer_->dofs();
+  const bool ee = options_.h5_end_effector && arms_;
+  const double S = options_.diffusion;
+  State y = x;
+  for (int i = 0; i < dofs.size(); ++i) {
+    if (!parts[static_cast<int>(dofs[i].part)]) continue;
+    if (ee && is_arm_chain(dofs, i)) continue;
+    y[i] += S * dofs[i].step * rng.normal();
+  }
+  y = dofs.clamp(y);
+  if (!ee) return y;
+  for (int side = 0; side < 2; ++side) {
+    const Part arm = side == 0 ? Part::left_arm : Part::right_arm;
+    if (!parts[static_cast<int>(arm)]) continue;
+    const ArmPoints a = arms_->points(y, side);
+    const double swivel = arms_->swivel(a) + S * options_.swivel_sigma * rng.normal();
+    // A wrist out of the arm's reach is drawn again (the thesis invalidates it), three times at
+    // most; then the arm stays as it was.
+    for (int tries = 0; tries < 3; ++tries) {
+      const Eigen::Vector3d noise(options_.wrist_sigma_m.x() * rng.normal(),
+                                  options_.wrist_sigma_m.y() * rng.normal(),
+                                  options_.wrist_sigma_m.z() * rng.normal());
+      const Eigen::Vector3d wrist = a.wrist + S * (camera_to_world * noise);
+      const auto elbow = arms_->swivel_elbow(a, wrist, swivel);
+      if (!elbow) continue;
+      arms_->solve(y, side, *elbow, wrist);
+      break;
+    }
+  }
+  return y;
+}
+
+std::array<double, kPartCount> ParticleFilter::part_overlap(const State& x,
+                                                            const FrameCues& cues) const {
+  std::array<double, kPartCount> out{};
+  LabelImage labels;
+  scorer_->render(x, cues.view, labels);
+  const double pixel = static_cast<double>(cues.view.factor) * cues.view.factor;
+  for (int v = labels.v0; v < labels.v1; ++v) {
+    for (int u = labels.u0; u < labels.u1; ++u) {
+      const std::uint8_t cell = labels.at(u, v);
+      if (cell == kNoCell) continue;
+      if (cues.cls_at(u, v) != scorer_->cell_class()[cell]) continue;
+      out[static_cast<int>(scorer_->shape().capsules[cell / kCellsPerCapsule].part)] += pixel;
+    }
+  }
+  return out;
+}
+
+FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& current, int frame) {
+  const BodyDofs& dofs = scorer_->dofs();
+  const int N = std::max(1, options_.particles), D = dofs.size();
+  FilterStep out;
+  out.moved.fill(true);
+  if (options_.h2_partitioned) {
+    // Eq. 4.15: the overlap of each part of the last estimate with its colour class in the last
+    // and in this frame's segmented image.
+    const std::array<double, kPartCount> before = part_overlap(best_, previous);
+    const std::array<double, kPartCount> now = part_overlap(best_, current);
+    for (int k = 0; k < kPartCount; ++k) {
+      out.moved[k] = before[k] - now[k] >= options_.motion_fraction * before[k];
+    }
+  }
+  // The children move on at the root's last velocity; the elite and the simplices' first vertex
+  // stay where their parent was, so that a stop (or a still image) is not overshot.
+  State velocity = State::Zero(D);
+  if (options_.root_velocity && previous_best_.size() == D) {
+    for (int i = 0; i < D; ++i) {
+      if (dofs[i].translation) velocity[i] = best_[i] - previous_best_[i];
+    }
+  }
+  previous_best_ = best_;
+  const Eigen::Matrix3d camera_to_world = current.view.camera->R.transpose();
+
+  // Resampling: children per parent.
+  const int P = static_cast<int>(particles_.size());
+  const double lowest = *std::min_element(energies_.begin(), energies_.end());
+  std::vector<double> w(P);
+  for (int i = 0; i < P; ++i) w[i] = std::exp(-(energies_[i] - lowest));
+  const double total = std::accumulate(w.begin(), w.end(), 0.0);
+  std::vector<int> children(P, 0);
+  const int elite =
+      static_cast<int>(std::min_element(energies_.begin(), energies_.end()) - energies_.begin());
+  if (options_.h1_resampling) {
+    std::vector<std::pair<double, int>> fraction;
+    int given = 0;
+    for (int i = 0; i < P; ++i) {
+      const double share = N * w[i] / total;
+      children[i] = static_cast<int>(std::floor(share));
+      given += children[i];
+      fraction.emplace_back(share - children[i], i);
+    }
+    std::stable_sort(fraction.begin(), fraction.end(),
+                     [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (int k = 0; given < N; ++k, ++given) ++children[fraction[k % P].second];
+  } else {
+    Rng rng(options_.seed, frame, 0xC0DE);
+    std::discrete_distribution<int> pick(w.begin(), w.end());
+    for (int k = 0; k < N; ++k) ++children[pick(rng.engine)];
+  }
+  std::vector<int> parents;
+  for (int i = 0; i < P; ++i) {
+    if (children[i] > 0) parents.push_back(i);
+  }
+  out.groups = static_cast<int>(parents.size());
+
+  // Prediction and measurement per group.
+  struct Group {
+    std::vector<State> x;
+    std::vector<Energy> e;
+    int evaluations = 0;
+    bool simplex = false;
+  };
+  std::vector<Group> groups(parents.size());
+  // The DOFs this frame's diffusion moves: H3's simplices span them.
+  std::vector<int> active;
+  for (int i = 0; i < D; ++i) {
+    if (out.moved[static_cast<int>(dofs[i].part)]) active.push_back(i);
+  }
+  const int d = static_cast<int>(active.size());
+  const auto energy_of = [&](const State& x) { return scorer_->energy_of(x, current); };
+  tbb::parallel_for(size_t{0}, parents.size(), [&](size_t g) {
+    const int p = parents[g], n = children[p];
+    Rng rng(options_.seed, frame, static_cast<std::uint64_t>(p) + 1);
+    Group& group = groups[g];
+    const State& parent = particles_[p];
+    const State moving = dofs.clamp(parent + velocity);
+    if (options_.h3_simplex && d > 0 && n >= d + 1) {
+      // The simplex spans the DOFs the diffusion moves (its other coordinates are the parent's).
+      group.simplex = true;
+      const auto embed = [&](const Eigen::VectorXd& z) {
+        State x = parent;
+        for (int k = 0; k < d; ++k) x[active[k]] = z[k];
+        return x;
+      };
+      const auto project = [&](const State& x) {
+        Eigen::VectorXd z(d);
+        for (int k = 0; k < d; ++k) z[k] = x[active[k]];
+        return z;
+      };
+      std::vector<Eigen::VectorXd> vertices = {project(parent)};
+      for (int k = 0; k < d; ++k) {
+        vertices.push_back(project(diffuse(moving, out.moved, rng, camera_to_world)));
+      }
+      NelderMead nm(
+          [&](const Eigen::VectorXd& z) {
+            const Energy e = energy_of(embed(z));
+            return NelderMead::Terms(e.region, e.edge);
+          },
+          project(dofs.lower()), project(dofs.upper()));
+      nm.start(std::move(vertices));
+      const int iterations = n - d - 1;
+      const int regions = static_cast<int>(std::lround(options_.simplex_region_share * iterations));
+      nm.set_weights({1.0, 0.0});
+      nm.run(regions);
+      nm.set_weights({0.0, 1.0});
+      nm.run(iterations - regions);
+      // The group: its n best distinct points, by the particle energy.
+      const auto& hx = nm.history();
+      const auto& ht = nm.history_terms();
+      std::vector<int> order(hx.size());
+      std::iota(order.begin(), order.end(), 0);
+      std::stable_sort(order.begin(), order.end(),
+                       [&](int a, int b) { return ht[a].sum() < ht[b].sum(); });
+      for (const int k : order) {
+        if (static_cast<int>(group.x.size()) == n) break;
+        const State x = embed(hx[k]);
+        if (!group.x.empty() && x == group.x.back()) continue;
+        group.x.push_back(x);
+        group.e.push_back({ht[k][0], ht[k][1]});
+      }
+      group.evaluations = nm.evaluations();
+    } else {
+      for (int k = 0; k < n; ++k) {
+        const bool keep = options_.h1_resampling && p == elite && k == 0;
+        group.x.push_back(keep ? parent : diffuse(moving, out.moved, rng, camera_to_world));
+        group.e.push_back(energy_of(group.x.back()));
+      }
+      group.evaluations = n;
+    }
+  });
+
+  std::vector<State> pool;
+  std::vector<Energy> pool_e;
+  for (const Group& g : groups) {
+    pool.insert(pool.end(), g.x.begin(), g.x.end());
+    pool_e.insert(pool_e.end(), g.e.begin(), g.e.end());
+    out.evaluations += g.evaluations;
+    out.simplex_groups += g.simplex;
+  }
+
+  // Kinematic flipping of the best particle of the largest groups.
+  if (options_.h4_flipping && arms_ && options_.flip_groups > 0) {
+    std::vector<int> by_size(groups.size());
+    std::iota(by_size.begin(), by_size.end(), 0);
+    std::stable_sort(by_size.begin(), by_size.end(),
+                     [&](int a, int b) { return groups[a].x.size() > groups[b].x.size(); });
+    std::vector<State> flipped;
+    const Eigen::Vector3d centre = current.view.camera->centre();
+    for (int k = 0; k < std::min<int>(options_.flip_groups, static_cast<int>(by_size.size()));
+         ++k) {
+      const Group& g = groups[by_size[k]];
+      const auto best =
+          std::min_element(g.e.begin(), g.e.end(),
+                           [](const Energy& a, const Energy& b) { return a.total() < b.total(); }) -
+          g.e.begin();
+      for (State& y : arms_->flips(g.x[best], centre)) flipped.push_back(std::move(y));
+    }
+    std::vector<Energy> fe(flipped.size());
+    tbb::parallel_for(size_t{0}, flipped.size(), [&](size_t i) { fe[i] = energy_of(flipped[i]); });
+    out.flips = static_cast<int>(flipped.size());
+    out.evaluations += out.flips;
+    pool.insert(pool.end(), flipped.begin(), flipped.end());
+    pool_e.insert(pool_e.end(), fe.begin(), fe.end());
+  }
+
+  // The N best survive (the thesis drops as many of the worst as flips were added).
+  std::vector<int> order(pool.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return pool_e[a].total() < pool_e[b].total(); });
+  order.resize(std::min<size_t>(order.size(), N));
+  particles_.clear();
+  energies_.clear();
+  for (const int k : order) {
+    particles_.push_back(pool[k]);
+    energies_.push_back(pool_e[k].total());
+  }
+  best_ = particles_.front();
+  out.best = best_;
+
+  out.mean = State::Zero(D);
+  double wsum = 0;
+  for (size_t k = 0; k < particles_.size(); ++k) {
+    const double wk = std::exp(-(energies_[k] - energies_.front()));
+    out.mean += wk * particles_[k];
+    wsum += wk;
+  }
+  out.mean /= wsum;
+  out.energy = pool_e[order.front()];
+  const ScoreOptions& so = scorer_->options();
+  out.score = {so.sigma_region * std::sqrt(2 * out.energy.region),
+               so.sigma_edge_px * std::sqrt(2 * out.energy.edge)};
+  return out;
+}
+
+}  // namespace simcap::tracker::gomez

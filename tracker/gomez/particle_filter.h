@@ -1,0 +1,86 @@
+// Gomez Jauregui's real-time particle filter (thesis §4.4.4): CONDENSATION over the body's DOF
+// state with five heuristics, each of which can be switched off -- H1 deterministic
+// weight-proportional resampling with elitism, H2 hierarchical partitioned diffusion of only the
+// parts whose region overlap dropped, H3 groups of at least n + 1 children turned into a
+// Nelder-Mead simplex, H4 kinematic flipping of the arms about the camera rays, H5 arms diffused
+// as wrist positions in camera coordinates plus the elbow's swivel angle.
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "tracker/gomez/arm_kinematics.h"
+#include "tracker/gomez/pose_scorer.h"
+
+namespace simcap::tracker::gomez {
+
+struct FilterOptions {
+  int particles = 200;
+  bool h1_resampling = true;   // else CONDENSATION's random resampling
+  bool h2_partitioned = true;  // else every DOF is diffused
+  bool h3_simplex = true;      // else every child is diffused
+  bool h4_flipping = true;
+  bool h5_end_effector = true;  // else the arms' angles are diffused
+  double diffusion = 1.0;       // S of eq. 4.13: multiplies every DOF's step
+  // H2: a part moved when its overlap dropped by this fraction of what it was (alpha^k, eq. 4.20).
+  double motion_fraction = 0.05;
+  // The root moves on at its last velocity before diffusion (simcap's addition for walking: the
+  // thesis's seated user kept his place).
+  bool root_velocity = true;
+  // H5: the wrists' diffusion in camera coordinates (the thesis's 70, 70 and 150 mm along the
+  // depth), and the elbow swivel's, radians.
+  Eigen::Vector3d wrist_sigma_m = Eigen::Vector3d(0.07, 0.07, 0.15);
+  double swivel_sigma = 0.2;
+  // H3: the share of a simplex group's iterations spent on the region energy before the rest
+  // goes to the edge energy from the same simplex (thesis §3.6.2.2: regions first, then edges).
+  double simplex_region_share = 0.5;
+  // H4: how many groups, largest first, have their best particle flipped.
+  int flip_groups = 2;
+  std::uint64_t seed = 1;
+};
+
+struct FilterStep {
+  State best;
+  State mean;  // the particles' weighted mean
+  Score score;
+  Energy energy;
+  int evaluations = 0;
+  int groups = 0;                        // parents with children
+  int simplex_groups = 0;                // of which refined by Nelder-Mead (H3)
+  int flips = 0;                         // kinematic flips kept (H4)
+  std::array<bool, kPartCount> moved{};  // H2's motion detection
+};
+
+class ParticleFilter {
+ public:
+  // Keeps references to the scorer and the arms (`arms` may be null when H4 and H5 are off).
+  ParticleFilter(const PoseScorer& scorer, const ArmKinematics* arms, const FilterOptions& options);
+
+  // Every particle at `x0`, scored on `cues`.
+  void reset(const State& x0, const FrameCues& cues);
+  // One frame: resample, predict (H2, H3, H5), flip (H4), measure. `previous` is the last
+  // frame's cues (for H2), `frame` seeds this frame's random numbers.
+  FilterStep step(const FrameCues& previous, const FrameCues& current, int frame);
+
+  const std::vector<State>& particles() const { return particles_; }
+  const std::vector<double>& energies() const { return energies_; }
+
+ private:
+  struct Rng;
+  State diffuse(const State& x, const std::array<bool, kPartCount>& parts, Rng& rng,
+                const Eigen::Matrix3d& camera_to_world) const;
+  // Pixels of each part of `x` whose colour class the image shows there (full resolution).
+  std::array<double, kPartCount> part_overlap(const State& x, const FrameCues& cues) const;
+
+  const PoseScorer* scorer_;
+  const ArmKinematics* arms_;
+  FilterOptions options_;
+  std::vector<State> particles_;
+  std::vector<double> energies_;
+  std::vector<Score> scores_;
+  State best_, previous_best_;
+};
+
+}  // namespace simcap::tracker::gomez
