@@ -4,6 +4,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/limits.h"
 
 namespace simcap {
 namespace fs = std::filesystem;
@@ -55,11 +56,31 @@ void write_image(const fs::path& path, const cv::Mat& image, const ImageCompress
   file.commit();
 }
 
+void check_image_size(const fs::path& path, long width, long height, int channels) {
+  if (width < 1 || height < 1) {
+    throw Error(path.string() + ": the image is " + std::to_string(width) + "x" +
+                std::to_string(height) + " pixels; expected at least 1x1");
+  }
+  if (width > limits::kMaxImagePixels / height) {
+    throw Error(path.string() + ": the image is " + std::to_string(width) + "x" +
+                std::to_string(height) + " pixels, more than the " +
+                std::to_string(limits::kMaxImagePixels) + " (" + limits::kMaxImagePixelsText +
+                ") simcap allows an image");
+  }
+  if (channels < 1 || channels > limits::kMaxImageChannels) {
+    throw Error(path.string() + ": the image has " + std::to_string(channels) +
+                " channels; simcap reads 1 to " + std::to_string(limits::kMaxImageChannels));
+  }
+}
+
 cv::Mat read_image(const fs::path& path) {
   if (!fs::exists(path)) throw Error(path.string() + ": image not found");
   auto in = OIIO::ImageInput::open(path.string());
   if (!in) throw Error(path.string() + ": cannot read image: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
+  check_image_size(path, spec.width, spec.height, spec.nchannels);
+  // OpenImageIO tries every format it knows on a file, some of which hold volumes.
+  if (spec.depth != 1) throw Error(path.string() + ": a volume image; expected a 2D image");
   int depth = CV_8U;
   if (spec.format == OIIO::TypeDesc::UINT16) depth = CV_16U;
   if (spec.format == OIIO::TypeDesc::FLOAT || spec.format == OIIO::TypeDesc::HALF) depth = CV_32F;

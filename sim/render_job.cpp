@@ -18,6 +18,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/limits.h"
 #include "core/progress.h"
 #include "scenes/scene.h"
 #include "sim/dataset_writer.h"
@@ -89,6 +90,11 @@ Scene load_for_render(const fs::path& scene_file, const RenderOptions& options) 
   if (options.frames == 0 || options.frames < -1) {
     throw Error("--frames: expected a positive number of frames, got " +
                 std::to_string(options.frames));
+  }
+  if (options.frames > limits::kMaxFrames) {
+    throw Error("--frames: " + std::to_string(options.frames) +
+                " is more than simcap's largest frame count, " +
+                std::to_string(limits::kMaxFrames));
   }
   if (options.frames > 0) scene.render.frame_count = options.frames;
   if (!options.cameras.empty()) select_cameras(scene, options.cameras);
