@@ -33,24 +33,33 @@ class FieldReader {
   Eigen::MatrixXd matrix(std::string_view key, int rows, int cols) const {
     const cv::FileNode n = node_[std::string(key)];
     if (n.empty()) fail(key, "missing (expected a " + shape(rows, cols) + " matrix)");
+    // The declared size is checked before OpenCV allocates for it. Distortion and vectors are
+    // accepted as rows or columns, as OpenCV itself does.
+    if (!n.isMap() || !n["rows"].isInt() || !n["cols"].isInt()) {
+      fail(key, "expected a " + shape(rows, cols) + " !!opencv-matrix");
+    }
+    const int got_rows = static_cast<int>(n["rows"]), got_cols = static_cast<int>(n["cols"]);
+    const bool vector_like = rows == 1 || cols == 1;
+    const bool ok = (got_rows == rows && got_cols == cols) ||
+                    (vector_like && (got_rows == 1 || got_cols == 1) &&
+                     static_cast<long>(got_rows) * got_cols == static_cast<long>(rows) * cols);
+    if (!ok) {
+      fail(key, "expected a " + shape(rows, cols) + " matrix, got " + shape(got_rows, got_cols));
+    }
     cv::Mat m;
     try {
       n >> m;
-    } catch (const cv::Exception&) {
+    } catch (const std::exception&) {  // cv::Exception, or a standard one from a damaged node
       fail(key, "expected a " + shape(rows, cols) + " !!opencv-matrix");
     }
-    if (m.empty()) fail(key, "expected a " + shape(rows, cols) + " !!opencv-matrix");
-    // Distortion and vectors are accepted as rows or columns, as OpenCV itself does.
-    const bool vector_like = rows == 1 || cols == 1;
-    const bool ok = (m.rows == rows && m.cols == cols) ||
-                    (vector_like && m.total() == static_cast<size_t>(rows * cols));
-    if (!ok) {
-      fail(key, "expected a " + shape(rows, cols) + " matrix, got " + shape(m.rows, m.cols));
+    if (m.empty() || m.total() != static_cast<size_t>(rows * cols) || m.channels() != 1) {
+      fail(key, "expected a " + shape(rows, cols) + " !!opencv-matrix");
     }
     m = m.reshape(1, rows);
     m.convertTo(m, CV_64F);
     Eigen::MatrixXd out;
     cv::cv2eigen(m, out);
+    if (!out.allFinite()) fail(key, "expected finite numbers");
     return out;
   }
 
@@ -105,6 +114,9 @@ cv::FileStorage open_for_reading(const fs::path& path) {
     return fsr;
   } catch (const cv::Exception& e) {
     throw Error(path.string() + ": not a valid OpenCV YAML file: " + e.msg);
+  } catch (const std::exception& e) {
+    // OpenCV's parser throws standard exceptions (std::length_error) on some damaged files.
+    throw Error(path.string() + ": not a valid OpenCV YAML file: " + e.what());
   }
 }
 

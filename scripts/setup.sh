@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Installs exactly the Debian 12 packages simcap builds against; skips apt when all are present.
+# --fuzz adds clang and its libFuzzer runtime, which only `make fuzz` needs.
 set -euo pipefail
 
 # openimageio-tools: Debian's OpenImageIOConfig.cmake imports its programs (/usr/bin/iconvert),
@@ -11,6 +12,9 @@ packages=(
   libpugixml-dev libcli11-dev googletest libgtest-dev libbenchmark-dev libpng-dev
   openimageio-tools
 )
+if [ "${1:-}" = "--fuzz" ]; then
+  packages+=(clang-14 libclang-rt-14-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
