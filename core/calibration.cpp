@@ -137,15 +137,14 @@ std::vector<std::string> read_names(const fs::path& path, const cv::FileStorage&
   return names;
 }
 
+// Formatted in memory, then written and checked by write_text_atomic: FileStorage does not
+// report a failed write (a full disk), which would leave a truncated file in place.
 template <typename WriteBody>
 void write_storage(const fs::path& path, WriteBody&& body) {
-  AtomicFile file(path);
-  {
-    cv::FileStorage fsw(file.temp_path().string(), cv::FileStorage::WRITE);
-    if (!fsw.isOpened()) throw Error(path.string() + ": cannot open for writing");
-    body(fsw);
-  }
-  file.commit();
+  cv::FileStorage fsw(path.extension().string(), cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
+  if (!fsw.isOpened()) throw Error(path.string() + ": cannot format for writing");
+  body(fsw);
+  write_text_atomic(path, fsw.releaseAndGetString());
 }
 
 }  // namespace

@@ -1,6 +1,9 @@
 #include "core/image_io.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+
+#include <vector>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -37,9 +40,15 @@ void write_image(const fs::path& path, const cv::Mat& image, const ImageCompress
                 "integers, EXR takes float32)");
   }
   const cv::Mat data = image.isContinuous() ? image : image.clone();
-  AtomicFile file(path);
-  auto out = OIIO::ImageOutput::create(file.temp_path().string());
+  // Encoded in memory, then written and checked by write_text_atomic: OpenImageIO's PNG writer
+  // does not report a failed write (a full disk), which would leave a truncated image in place.
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput memory(bytes);
+  auto out = OIIO::ImageOutput::create(path.string());
   if (!out) throw Error(path.string() + ": " + OIIO::geterror());
+  if (!out->supports("ioproxy") || !out->set_ioproxy(&memory)) {
+    throw Error(path.string() + ": OpenImageIO cannot encode this format in memory");
+  }
   OIIO::ImageSpec spec(data.cols, data.rows, data.channels(), oiio_type(depth));
   // No timestamp (OpenEXR files get one by default): equal images give byte-identical files.
   spec.attribute("DateTime", "");
@@ -49,11 +58,11 @@ void write_image(const fs::path& path, const cv::Mat& image, const ImageCompress
     // 8 is libpng's PNG_FILTER_NONE; left alone, libpng tries every filter on every row.
     if (!compression.png_filter) spec.attribute("png:filter", 8);
   }
-  if (!out->open(file.temp_path().string(), spec) ||
-      !out->write_image(oiio_type(depth), data.data) || !out->close()) {
+  if (!out->open(path.string(), spec) || !out->write_image(oiio_type(depth), data.data) ||
+      !out->close()) {
     throw Error(path.string() + ": write failed: " + out->geterror());
   }
-  file.commit();
+  write_text_atomic(path, {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
 }
 
 void check_image_size(const fs::path& path, long width, long height, int channels) {

@@ -18,12 +18,14 @@
 #include "core/image_io.h"
 #include "scenes/scene.h"
 #include "sim/animated_actors.h"
+#include "tests/support/file_tree.h"
 #include "tests/support/temp_dir.h"
 
 namespace simcap {
 namespace {
 namespace fs = std::filesystem;
 using testing::run_simcap;
+using testing::read_tree;
 using testing::TempDir;
 
 constexpr int kFrames = 4;
@@ -343,14 +345,6 @@ TEST(RenderDataset, NormalsAreUnitVectorsFacingTheCamera) {
   // Smoothly interpolated normals may tip past 90 degrees only at the body's silhouette.
   EXPECT_LT(facing_away, body / 10 + 1);
   EXPECT_LT(facing_away, pixels / 1000);
-}
-
-std::map<std::string, std::string> read_tree(const fs::path& root) {
-  std::map<std::string, std::string> files;
-  for (const auto& e : fs::recursive_directory_iterator(root)) {
-    if (e.is_regular_file()) files[fs::relative(e.path(), root).string()] = read_text(e.path());
-  }
-  return files;
 }
 
 TEST(RenderDataset, SameSeedGivesByteIdenticalFiles) {
