@@ -51,9 +51,6 @@ class DatasetWriter {
   // Publishes the tables; until then they exist only under temporary names.
   void commit_truth();
 
-  // Removes temporary files an interrupted render left behind (AtomicFile's ".<name>.tmp*").
-  void remove_stale_temporaries() const;
-
  private:
   std::filesystem::path root_;
   std::vector<std::string> cameras_;

@@ -20,6 +20,7 @@
 #include "core/error.h"
 #include "core/limits.h"
 #include "core/progress.h"
+#include "core/stale_temporaries.h"
 #include "scenes/scene.h"
 #include "sim/dataset_writer.h"
 #include "sim/ground_truth.h"
@@ -239,7 +240,7 @@ RenderSummary render_dataset(const fs::path& scene_file, const fs::path& out_dir
 
   const auto& cameras = setup.cameras();
   DatasetWriter writer(out_dir, camera_names(scene), scene.render.normals);
-  writer.remove_stale_temporaries();
+  remove_stale_temporaries(out_dir);
   Json meta = describe(scene, scene_file, setup.actors().posed());
   meta["complete"] = false;
   write_text_atomic(out_dir / "meta.json", meta.dump(2) + "\n");
