@@ -122,6 +122,10 @@ cv::FileStorage open_for_reading(const fs::path& path) {
 
 std::vector<std::string> read_names(const fs::path& path, const cv::FileStorage& fsr,
                                     const std::string& key) {
+  // FileStorage::operator[] asserts (throws cv::Exception) on a file whose top is not a map.
+  if (!fsr.root().isMap()) {
+    throw_input_error(path, 0, "", "expected a map of fields at the top (camera_names, ...)");
+  }
   const cv::FileNode n = fsr[key];
   if (n.empty() || !n.isSeq()) {
     throw_input_error(path, 0, "field '" + key + "'", "missing (expected a list of camera names)");

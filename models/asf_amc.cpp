@@ -149,7 +149,14 @@ Asf parse_asf(std::string_view text, const std::filesystem::path& file) {
       }
     } else if (section == ":root") {
       if (key == "order") {
-        for (size_t i = 1; i < l.words.size(); ++i) asf.root_order.push_back(lower(l.words[i]));
+        for (size_t i = 1; i < l.words.size(); ++i) {
+          const std::string d = lower(l.words[i]);
+          if (d.size() != 2 || (d[0] != 't' && d[0] != 'r') || d[1] < 'x' || d[1] > 'z') {
+            p.fail(l.number,
+                   "root order: expected TX, TY, TZ, RX, RY or RZ, got '" + l.words[i] + "'");
+          }
+          asf.root_order.push_back(d);
+        }
       } else if (key == "axis") {
         if (l.words.size() < 2) p.fail(l.number, "root axis: expected an order such as XYZ");
         root_axis = l.words[1];

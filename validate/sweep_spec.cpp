@@ -43,7 +43,8 @@ std::string value_text(const YAML::Node& node, const fs::path& file, const std::
 
 fs::path existing_file(const SweepSetting& s, const fs::path& dir, const fs::path& file) {
   const fs::path p = (dir / s.value).lexically_normal();
-  if (!fs::is_regular_file(p)) {
+  std::error_code ec;  // a name too long for the system is no such file either
+  if (!fs::is_regular_file(p, ec)) {
     throw_input_error(file, s.line, s.key, "no such file: " + p.string());
   }
   return p;

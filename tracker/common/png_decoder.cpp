@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <csetjmp>
+#include <cstring>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -66,6 +67,15 @@ cv::Mat decode_png(const std::filesystem::path& path, int flags) {
     return {};
   }
   if (bytes.size() < 8 || png_sig_cmp(bytes.data(), 0, 8) != 0) return fallback();
+  // The size the IHDR chunk (always first) claims, checked before either decoder sees the file:
+  // a file libpng refuses still goes to cv::imread, which would allocate up to 2^30 pixels.
+  if (bytes.size() >= 24 && std::memcmp(bytes.data() + 12, "IHDR", 4) == 0) {
+    const auto be32 = [&](std::size_t at) {
+      return static_cast<long>(bytes[at]) << 24 | bytes[at + 1] << 16 | bytes[at + 2] << 8 |
+             bytes[at + 3];
+    };
+    check_image_size(path, be32(16), be32(20), 1);
+  }
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   struct Release {
