@@ -1,10 +1,13 @@
 # The README's quick start. Every target first installs what is missing (scripts/setup.sh).
 BUILD ?= build
 SAN_BUILD ?= build-sanitize
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS ?=
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all setup build demo test test-sanitize bench format clean
+.PHONY: all setup build demo test test-sanitize fuzz bench format clean
 
 all: build
 
@@ -28,6 +31,13 @@ test-sanitize: setup
 	cmake --build $(SAN_BUILD) -j $(JOBS)
 	cd $(SAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ctest --output-on-failure -j $(JOBS)
 
+# Every libFuzzer harness of tests/fuzz for FUZZ_SECONDS each (clang; findings in tests/fuzz/findings/).
+fuzz:
+	@bash scripts/setup.sh --fuzz
+	cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 -DSIMCAP_FUZZ=ON -DSIMCAP_BUILD_TESTS=OFF -DSIMCAP_BUILD_BENCH=OFF
+	cmake --build $(FUZZ_BUILD) --target fuzz_harnesses -j $(JOBS)
+	bash scripts/fuzz.sh $(FUZZ_BUILD) $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+
 bench: build
 	$(BUILD)/apps/simcap/simcap bench render
 
@@ -35,4 +45,4 @@ format:
 	git ls-files '*.cpp' '*.h' | xargs clang-format -i
 
 clean:
-	rm -rf $(BUILD) $(SAN_BUILD)
+	rm -rf $(BUILD) $(SAN_BUILD) $(FUZZ_BUILD)

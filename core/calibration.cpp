@@ -33,24 +33,33 @@ class FieldReader {
   Eigen::MatrixXd matrix(std::string_view key, int rows, int cols) const {
     const cv::FileNode n = node_[std::string(key)];
     if (n.empty()) fail(key, "missing (expected a " + shape(rows, cols) + " matrix)");
+    // The declared size is checked before OpenCV allocates for it. Distortion and vectors are
+    // accepted as rows or columns, as OpenCV itself does.
+    if (!n.isMap() || !n["rows"].isInt() || !n["cols"].isInt()) {
+      fail(key, "expected a " + shape(rows, cols) + " !!opencv-matrix");
+    }
+    const int got_rows = static_cast<int>(n["rows"]), got_cols = static_cast<int>(n["cols"]);
+    const bool vector_like = rows == 1 || cols == 1;
+    const bool ok = (got_rows == rows && got_cols == cols) ||
+                    (vector_like && (got_rows == 1 || got_cols == 1) &&
+                     static_cast<long>(got_rows) * got_cols == static_cast<long>(rows) * cols);
+    if (!ok) {
+      fail(key, "expected a " + shape(rows, cols) + " matrix, got " + shape(got_rows, got_cols));
+    }
     cv::Mat m;
     try {
       n >> m;
-    } catch (const cv::Exception&) {
+    } catch (const std::exception&) {  // cv::Exception, or a standard one from a damaged node
       fail(key, "expected a " + shape(rows, cols) + " !!opencv-matrix");
     }
-    if (m.empty()) fail(key, "expected a " + shape(rows, cols) + " !!opencv-matrix");
-    // Distortion and vectors are accepted as rows or columns, as OpenCV itself does.
-    const bool vector_like = rows == 1 || cols == 1;
-    const bool ok = (m.rows == rows && m.cols == cols) ||
-                    (vector_like && m.total() == static_cast<size_t>(rows * cols));
-    if (!ok) {
-      fail(key, "expected a " + shape(rows, cols) + " matrix, got " + shape(m.rows, m.cols));
+    if (m.empty() || m.total() != static_cast<size_t>(rows * cols) || m.channels() != 1) {
+      fail(key, "expected a " + shape(rows, cols) + " !!opencv-matrix");
     }
     m = m.reshape(1, rows);
     m.convertTo(m, CV_64F);
     Eigen::MatrixXd out;
     cv::cv2eigen(m, out);
+    if (!out.allFinite()) fail(key, "expected finite numbers");
     return out;
   }
 
@@ -105,11 +114,18 @@ cv::FileStorage open_for_reading(const fs::path& path) {
     return fsr;
   } catch (const cv::Exception& e) {
     throw Error(path.string() + ": not a valid OpenCV YAML file: " + e.msg);
+  } catch (const std::exception& e) {
+    // OpenCV's parser throws standard exceptions (std::length_error) on some damaged files.
+    throw Error(path.string() + ": not a valid OpenCV YAML file: " + e.what());
   }
 }
 
 std::vector<std::string> read_names(const fs::path& path, const cv::FileStorage& fsr,
                                     const std::string& key) {
+  // FileStorage::operator[] asserts (throws cv::Exception) on a file whose top is not a map.
+  if (!fsr.root().isMap()) {
+    throw_input_error(path, 0, "", "expected a map of fields at the top (camera_names, ...)");
+  }
   const cv::FileNode n = fsr[key];
   if (n.empty() || !n.isSeq()) {
     throw_input_error(path, 0, "field '" + key + "'", "missing (expected a list of camera names)");
@@ -125,15 +141,14 @@ std::vector<std::string> read_names(const fs::path& path, const cv::FileStorage&
   return names;
 }
 
+// Formatted in memory, then written and checked by write_text_atomic: FileStorage does not
+// report a failed write (a full disk), which would leave a truncated file in place.
 template <typename WriteBody>
 void write_storage(const fs::path& path, WriteBody&& body) {
-  AtomicFile file(path);
-  {
-    cv::FileStorage fsw(file.temp_path().string(), cv::FileStorage::WRITE);
-    if (!fsw.isOpened()) throw Error(path.string() + ": cannot open for writing");
-    body(fsw);
-  }
-  file.commit();
+  cv::FileStorage fsw(path.extension().string(), cv::FileStorage::WRITE | cv::FileStorage::MEMORY);
+  if (!fsw.isOpened()) throw Error(path.string() + ": cannot format for writing");
+  body(fsw);
+  write_text_atomic(path, fsw.releaseAndGetString());
 }
 
 }  // namespace

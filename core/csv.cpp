@@ -87,7 +87,7 @@ CsvWriter::CsvWriter(const fs::path& path, const std::vector<std::string>& colum
 
 void CsvWriter::commit() {
   out_.flush();
-  if (!out_) throw Error(file_.target().string() + ": write failed");
+  if (!out_) throw Error(file_.target().string() + ": write failed: " + std::strerror(errno));
   out_.close();
   file_.commit();
 }

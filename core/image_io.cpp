@@ -1,9 +1,13 @@
 #include "core/image_io.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
+
+#include <vector>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/limits.h"
 
 namespace simcap {
 namespace fs = std::filesystem;
@@ -36,9 +40,15 @@ void write_image(const fs::path& path, const cv::Mat& image, const ImageCompress
                 "integers, EXR takes float32)");
   }
   const cv::Mat data = image.isContinuous() ? image : image.clone();
-  AtomicFile file(path);
-  auto out = OIIO::ImageOutput::create(file.temp_path().string());
+  // Encoded in memory, then written and checked by write_text_atomic: OpenImageIO's PNG writer
+  // does not report a failed write (a full disk), which would leave a truncated image in place.
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput memory(bytes);
+  auto out = OIIO::ImageOutput::create(path.string());
   if (!out) throw Error(path.string() + ": " + OIIO::geterror());
+  if (!out->supports("ioproxy") || !out->set_ioproxy(&memory)) {
+    throw Error(path.string() + ": OpenImageIO cannot encode this format in memory");
+  }
   OIIO::ImageSpec spec(data.cols, data.rows, data.channels(), oiio_type(depth));
   // No timestamp (OpenEXR files get one by default): equal images give byte-identical files.
   spec.attribute("DateTime", "");
@@ -48,11 +58,28 @@ void write_image(const fs::path& path, const cv::Mat& image, const ImageCompress
     // 8 is libpng's PNG_FILTER_NONE; left alone, libpng tries every filter on every row.
     if (!compression.png_filter) spec.attribute("png:filter", 8);
   }
-  if (!out->open(file.temp_path().string(), spec) ||
-      !out->write_image(oiio_type(depth), data.data) || !out->close()) {
+  if (!out->open(path.string(), spec) || !out->write_image(oiio_type(depth), data.data) ||
+      !out->close()) {
     throw Error(path.string() + ": write failed: " + out->geterror());
   }
-  file.commit();
+  write_text_atomic(path, {reinterpret_cast<const char*>(bytes.data()), bytes.size()});
+}
+
+void check_image_size(const fs::path& path, long width, long height, int channels) {
+  if (width < 1 || height < 1) {
+    throw Error(path.string() + ": the image is " + std::to_string(width) + "x" +
+                std::to_string(height) + " pixels; expected at least 1x1");
+  }
+  if (width > limits::kMaxImagePixels / height) {
+    throw Error(path.string() + ": the image is " + std::to_string(width) + "x" +
+                std::to_string(height) + " pixels, more than the " +
+                std::to_string(limits::kMaxImagePixels) + " (" + limits::kMaxImagePixelsText +
+                ") simcap allows an image");
+  }
+  if (channels < 1 || channels > limits::kMaxImageChannels) {
+    throw Error(path.string() + ": the image has " + std::to_string(channels) +
+                " channels; simcap reads 1 to " + std::to_string(limits::kMaxImageChannels));
+  }
 }
 
 cv::Mat read_image(const fs::path& path) {
@@ -60,6 +87,9 @@ cv::Mat read_image(const fs::path& path) {
   auto in = OIIO::ImageInput::open(path.string());
   if (!in) throw Error(path.string() + ": cannot read image: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
+  check_image_size(path, spec.width, spec.height, spec.nchannels);
+  // OpenImageIO tries every format it knows on a file, some of which hold volumes.
+  if (spec.depth != 1) throw Error(path.string() + ": a volume image; expected a 2D image");
   int depth = CV_8U;
   if (spec.format == OIIO::TypeDesc::UINT16) depth = CV_16U;
   if (spec.format == OIIO::TypeDesc::FLOAT || spec.format == OIIO::TypeDesc::HALF) depth = CV_32F;

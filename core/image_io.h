@@ -21,7 +21,12 @@ struct ImageCompression {
 void write_image(const std::filesystem::path& path, const cv::Mat& image,
                  const ImageCompression& compression = {});
 
-// Reads PNG as CV_8U/CV_16U with the file's channel count, EXR as CV_32F.
+// Reads PNG as CV_8U/CV_16U with the file's channel count, EXR as CV_32F. A file whose header
+// claims more than limits.h allows is refused before anything is allocated for its pixels.
 cv::Mat read_image(const std::filesystem::path& path);
+
+// Throws Error naming `path` and the limit when an image of width x height pixels and `channels`
+// channels is beyond limits.h's (checked on a header's claim, before allocating).
+void check_image_size(const std::filesystem::path& path, long width, long height, int channels);
 
 }  // namespace simcap

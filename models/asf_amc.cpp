@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/limits.h"
 #include "models/bvh_export.h"
 
 namespace simcap {
@@ -148,7 +149,14 @@ Asf parse_asf(std::string_view text, const std::filesystem::path& file) {
       }
     } else if (section == ":root") {
       if (key == "order") {
-        for (size_t i = 1; i < l.words.size(); ++i) asf.root_order.push_back(lower(l.words[i]));
+        for (size_t i = 1; i < l.words.size(); ++i) {
+          const std::string d = lower(l.words[i]);
+          if (d.size() != 2 || (d[0] != 't' && d[0] != 'r') || d[1] < 'x' || d[1] > 'z') {
+            p.fail(l.number,
+                   "root order: expected TX, TY, TZ, RX, RY or RZ, got '" + l.words[i] + "'");
+          }
+          asf.root_order.push_back(d);
+        }
       } else if (key == "axis") {
         if (l.words.size() < 2) p.fail(l.number, "root axis: expected an order such as XYZ");
         root_axis = l.words[1];
@@ -362,7 +370,12 @@ BvhClip parse_asf_amc(std::string_view asf_text, const std::filesystem::path& as
     if (w[0] == ':') continue;  // :FULLY-SPECIFIED, :DEGREES
     if (l.words.size() == 1 && std::all_of(w.begin(), w.end(), ::isdigit)) {
       finish_frame();
-      const int n = std::stoi(w);
+      int n = 0;
+      const auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), n);
+      if (ec != std::errc() || end != w.data() + w.size() || n > limits::kMaxFrames) {
+        p.fail(l.number, "expected a frame number up to " + std::to_string(limits::kMaxFrames) +
+                             " (simcap's largest frame count), got " + w);
+      }
       if (frame_number >= 0 && n != frame_number + 1) {
         p.fail(l.number, "expected frame " + std::to_string(frame_number + 1) + ", got " + w);
       }

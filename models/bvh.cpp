@@ -6,9 +6,12 @@
 #include <charconv>
 #include <cmath>
 #include <numbers>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/limits.h"
 
 namespace simcap {
 namespace {
@@ -88,6 +91,11 @@ class Parser {
     const long frames = integer(frames_token, "frame count");
     if (frames < 1)
       fail(frames_token.line, "expected at least 1 frame, got " + std::to_string(frames));
+    if (frames > limits::kMaxFrames) {
+      fail(frames_token.line, "Frames: " + std::to_string(frames) +
+                                  " is more than simcap's largest frame count, " +
+                                  std::to_string(limits::kMaxFrames));
+    }
     keyword("Frame");
     keyword("Time:");
     const Token& time_token = next("the frame time in seconds");
@@ -146,12 +154,21 @@ class Parser {
     return v;
   }
 
-  std::string unique_name(const BvhClip& clip, std::string name) const {
-    if (clip.find(name) < 0) return name;
-    for (int k = 2;; ++k) {
+  // `name`, or the first of name2, name3, ... not taken. Each base name remembers its last
+  // suffix, so that many end sites under one joint cost linear time.
+  std::string unique_name(const std::string& name) {
+    if (!names_.contains(name)) return name;
+    int& k = last_suffix_[name];
+    while (true) {
+      k = std::max(k + 1, 2);
       std::string candidate = name + std::to_string(k);
-      if (clip.find(candidate) < 0) return candidate;
+      if (!names_.contains(candidate)) return candidate;
     }
+  }
+
+  void add_name(BvhClip& clip, BvhJoint joint) {
+    names_.insert(joint.name);
+    clip.joints.push_back(std::move(joint));
   }
 
   int add_joint(BvhClip& clip, int parent) {
@@ -159,11 +176,11 @@ class Parser {
     if (t.text == "{" || t.text == "}") {
       fail(t.line, "expected a joint name, got '" + std::string(t.text) + "'");
     }
-    if (clip.find(t.text) >= 0) fail(t.line, "joint name '" + std::string(t.text) + "' used twice");
     BvhJoint joint;
     joint.name = std::string(t.text);
+    if (names_.contains(joint.name)) fail(t.line, "joint name '" + joint.name + "' used twice");
     joint.parent = parent;
-    clip.joints.push_back(std::move(joint));
+    add_name(clip, std::move(joint));
     keyword("{");
     return static_cast<int>(clip.joints.size()) - 1;
   }
@@ -225,12 +242,12 @@ class Parser {
           keyword("{");
           keyword("OFFSET");
           BvhJoint site;
-          site.name = unique_name(clip, name + "_End");
+          site.name = unique_name(name + "_End");
           site.parent = top.joint;
           site.is_end_site = true;
           site.offset = offset(site.name);
           site.first_channel = clip.channel_count;
-          clip.joints.push_back(std::move(site));
+          add_name(clip, std::move(site));
           keyword("}");
         }
       } else if (t.text == "}") {
@@ -283,6 +300,8 @@ class Parser {
   std::vector<Token> tokens_;
   size_t pos_ = 0;
   std::filesystem::path file_;
+  std::unordered_set<std::string> names_;  // of the joints and end sites so far
+  std::unordered_map<std::string, int> last_suffix_;
 };
 
 // The unit that makes the rest skeleton's largest extent closest (in ratio) to an adult's 1.7 m.

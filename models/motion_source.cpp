@@ -23,7 +23,12 @@ Motion load_motion(const MotionSource& source, const Skeleton& skeleton, double 
   if (source.bvh.empty() && source.amc.empty()) {
     return generate_procedural(source.procedural, skeleton, fps);
   }
-  return resample_motion(retarget_bvh(read_motion_clip(source), skeleton).motion, fps);
+  const Motion retargeted = retarget_bvh(read_motion_clip(source), skeleton).motion;
+  try {
+    return resample_motion(retargeted, fps);
+  } catch (const Error& e) {
+    throw Error((source.bvh.empty() ? source.amc : source.bvh).string() + ": " + e.what());
+  }
 }
 
 }  // namespace simcap

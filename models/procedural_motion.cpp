@@ -11,6 +11,7 @@
 #include <numbers>
 
 #include "core/error.h"
+#include "core/limits.h"
 #include "models/motion_source.h"
 #include "models/pose.h"
 #include "models/procedural_actions.h"
@@ -336,7 +337,7 @@ Motion generate_procedural(const ProceduralSpec& spec, const Skeleton& skeleton,
   }
   Motion motion;
   motion.fps = fps;
-  const int frames = static_cast<int>(std::floor(spec.duration_s * fps + 1e-6)) + 1;
+  const int frames = limits::frames_within(spec.duration_s, fps, "procedural motion");
   for (int i = 0; i < frames; ++i) motion.frames.push_back(pose_at(i / fps));
   return motion;
 }

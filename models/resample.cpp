@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/limits.h"
 
 namespace simcap {
 
@@ -16,9 +17,7 @@ Motion resample_motion(const Motion& motion, double fps) {
   Motion out;
   out.fps = fps;
   const int n_in = static_cast<int>(motion.frames.size());
-  // The small tolerance keeps the last source frame when the duration is a whole number of
-  // output frames despite rounding (994 frames at 120 fps -> 30 fps).
-  const int n_out = static_cast<int>(std::floor(motion.duration_s() * fps + 1e-6)) + 1;
+  const int n_out = limits::frames_within(motion.duration_s(), fps, "resample: the motion");
   out.frames.reserve(n_out);
   for (int i = 0; i < n_out; ++i) {
     const double u = std::min(i / fps * motion.fps, static_cast<double>(n_in - 1));

@@ -12,6 +12,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/limits.h"
 #include "core/rig.h"
 #include "models/procedural_actions.h"
 #include "models/shipped_assets.h"
@@ -29,8 +30,6 @@ using yaml::Field;
 using yaml::Map;
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
-constexpr int kIntMax = std::numeric_limits<int>::max();
-constexpr int kMaxImageSide = 16384;
 
 // 'auto' (0) or metres per file unit.
 double read_units(const Field& v) {
@@ -183,8 +182,13 @@ Intrinsics read_intrinsics(Map& m, const Intrinsics& inherited) {
   Intrinsics in = inherited;
   if (auto v = m.take("resolution")) {
     const auto wh = v->items(2, 2);
-    in.width = wh[0].integer(1, kMaxImageSide);
-    in.height = wh[1].integer(1, kMaxImageSide);
+    in.width = wh[0].integer(1, limits::kMaxImageSide, "simcap's largest image side");
+    in.height = wh[1].integer(1, limits::kMaxImageSide, "simcap's largest image side");
+    if (static_cast<long>(in.width) * in.height > limits::kMaxImagePixels) {
+      v->fail(std::to_string(in.width) + "x" + std::to_string(in.height) +
+              " pixels is more than the " + std::to_string(limits::kMaxImagePixels) + " (" +
+              limits::kMaxImagePixelsText + ") simcap allows an image");
+    }
   }
   auto hfov = m.take("hfov_deg");
   auto fx = m.take("fx");
@@ -561,13 +565,15 @@ RenderSettings SceneReader::read_render(const Field& f) const {
   Map m(f);
   RenderSettings r;
   if (auto v = m.take("fps")) r.fps = v->number(yaml::positive(1000));
-  if (auto v = m.take("first_frame")) r.first_frame = v->integer(0, kIntMax);
+  if (auto v = m.take("first_frame")) {
+    r.first_frame = v->integer(0, limits::kMaxFrames, "simcap's largest frame count");
+  }
   if (auto v = m.take("frames")) {
     if (v->is_scalar() && v->node().Scalar() == "all") {
       r.frame_count = -1;
     } else {
       if (!v->is_scalar()) v->expected("'all' or a frame count (an integer >= 1)");
-      r.frame_count = v->integer(1, kIntMax);
+      r.frame_count = v->integer(1, limits::kMaxFrames, "simcap's largest frame count");
     }
   }
   if (auto v = m.take("samples_per_pixel")) r.samples_per_pixel = v->integer(1, 65536);

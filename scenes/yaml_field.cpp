@@ -126,8 +126,9 @@ float Field::number_f(const Range& range) const {
   return parse_number<float>(*this, range);
 }
 
-int Field::integer(int lo, int hi) const {
-  const std::string what = "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+int Field::integer(int lo, int hi, std::string_view limit) const {
+  std::string what = "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  if (!limit.empty()) what += " (" + std::to_string(hi) + ": " + std::string(limit) + ")";
   long long v = 0;
   if (!is_scalar() || !parse_exact(node_.Scalar(), v) || v < lo || v > hi) expected(what);
   return static_cast<int>(v);

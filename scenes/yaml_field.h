@@ -67,7 +67,8 @@ class Field {
 
   double number(const Range& range) const;
   float number_f(const Range& range) const;  // parsed directly as float (no double rounding)
-  int integer(int lo, int hi) const;
+  // `limit`, when given, says what the upper bound is (e.g. "simcap's largest image side").
+  int integer(int lo, int hi, std::string_view limit = {}) const;
   std::uint64_t unsigned64() const;
   bool boolean() const;
   std::string text() const;  // any non-empty scalar

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Installs exactly the Debian 12 packages simcap builds against; skips apt when all are present.
+# --fuzz adds clang and its libFuzzer runtime, which only `make fuzz` needs.
 set -euo pipefail
 
 # slurmctld, slurmd, slurm-client, munge: the one-node cluster of tests/collect's Slurm test
@@ -14,6 +15,9 @@ packages=(
   openimageio-tools
   slurmctld slurmd slurm-client munge
 )
+if [ "${1:-}" = "--fuzz" ]; then
+  packages+=(clang-14 libclang-rt-14-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -208,17 +208,4 @@ void DatasetWriter::commit_truth() {
   coco_->write(root_ / "gt" / "keypoints_coco.json");
 }
 
-void DatasetWriter::remove_stale_temporaries() const {
-  std::error_code ec;
-  if (!fs::is_directory(root_, ec)) return;
-  for (auto it = fs::recursive_directory_iterator(root_, ec);
-       !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (it->is_regular_file() && name.size() > 1 && name[0] == '.' &&
-        name.find(".tmp") != std::string::npos) {
-      fs::remove(it->path(), ec);
-    }
-  }
-}
-
 }  // namespace simcap

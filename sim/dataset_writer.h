@@ -57,9 +57,6 @@ class DatasetWriter {
                       const std::vector<PosedActor>& actors) const;
   void commit_truth();
 
-  // Removes temporary files an interrupted render left behind (AtomicFile's ".<name>.tmp*").
-  void remove_stale_temporaries() const;
-
  private:
   std::filesystem::path root_;
   std::vector<std::string> cameras_;

@@ -18,7 +18,9 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/limits.h"
 #include "core/progress.h"
+#include "core/stale_temporaries.h"
 #include "scenes/scene.h"
 #include "sim/calibration_error.h"
 #include "sim/dataset_writer.h"
@@ -99,6 +101,11 @@ Scene load_for_render(const fs::path& scene_file, const RenderOptions& options) 
   if (options.frames == 0 || options.frames < -1) {
     throw Error("--frames: expected a positive number of frames, got " +
                 std::to_string(options.frames));
+  }
+  if (options.frames > limits::kMaxFrames) {
+    throw Error("--frames: " + std::to_string(options.frames) +
+                " is more than simcap's largest frame count, " +
+                std::to_string(limits::kMaxFrames));
   }
   if (options.frames > 0) scene.render.frame_count = options.frames;
   if (!options.cameras.empty()) select_cameras(scene, options.cameras);
@@ -307,7 +314,7 @@ RenderSummary render_dataset(const fs::path& scene_file, const fs::path& out_dir
 
   const auto& cameras = setup.cameras();
   DatasetWriter writer(out_dir, camera_names(scene), scene.render.normals);
-  writer.remove_stale_temporaries();
+  remove_stale_temporaries(out_dir);
   Json meta = describe(scene, scene_file, setup.actors().posed(), setup.clock());
   meta["complete"] = false;
   write_text_atomic(out_dir / "meta.json", meta.dump(2) + "\n");

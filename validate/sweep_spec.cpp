@@ -43,7 +43,8 @@ std::string value_text(const YAML::Node& node, const fs::path& file, const std::
 
 fs::path existing_file(const SweepSetting& s, const fs::path& dir, const fs::path& file) {
   const fs::path p = (dir / s.value).lexically_normal();
-  if (!fs::is_regular_file(p)) {
+  std::error_code ec;  // a name too long for the system is no such file either
+  if (!fs::is_regular_file(p, ec)) {
     throw_input_error(file, s.line, s.key, "no such file: " + p.string());
   }
   return p;
@@ -194,6 +195,17 @@ SweepSpec load_sweep(const fs::path& file) {
     throw_input_error(file, e.mark.line + 1, "", e.msg);
   }
   if (spec.axes.empty()) throw_input_error(file, 0, "vary", "missing; expected what to vary");
+  std::size_t points = 1;
+  std::string sizes;
+  for (const auto& axis : spec.axes) {
+    points = std::min(points * axis.labels.size(), kMaxSweepPoints + 1);
+    sizes += (sizes.empty() ? "" : " x ") + std::to_string(axis.labels.size());
+  }
+  if (points > kMaxSweepPoints) {
+    throw_input_error(file, 0, "vary",
+                      "the axes make more than " + std::to_string(kMaxSweepPoints) + " points (" +
+                          sizes + "), simcap's limit for one sweep; split it");
+  }
   // Settings are checked now, so that a bad value stops the sweep before any point runs.
   for (const auto& axis : spec.axes) {
     for (const auto& settings : axis.settings) {

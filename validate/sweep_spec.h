@@ -2,6 +2,7 @@
 // the parameters to vary, expanded into the configurations of every point of the sweep.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -50,6 +51,9 @@ struct SweepPoint {
   std::vector<std::string> labels;  // one per axis
   LoopConfig config;
 };
+
+// Points one sweep may have (each renders, tracks and validates; 10000 is days of work).
+inline constexpr std::size_t kMaxSweepPoints = 10'000;
 
 // Reads a sweep file. Paths in it are relative to its folder. Errors name the file, line and key.
 //

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/image_io.h"
 #include "core/progress.h"
+#include "core/stale_temporaries.h"
 #include "validate/metrics_json.h"
 #include "validate/overlay.h"
 #include "validate/report_html.h"
@@ -135,6 +136,8 @@ fs::path rgb_frame_path(const fs::path& dataset, const std::string& camera, int 
 ValidateSummary validate_dataset(const fs::path& dataset, const fs::path& track,
                                  const fs::path& out, const ValidateOptions& options) {
   const ValidationInputs in = load_validation_inputs(dataset, track);
+  // A run killed before left temporaries; this run's report is exactly its own files.
+  remove_stale_temporaries(out);
   EvaluationOptions eval_options;
   eval_options.failure_threshold_mm = options.failure_threshold_mm;
   ValidateSummary summary;

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <map>
+#include <unordered_map>
 
 #include "core/csv.h"
 #include "core/error.h"
+#include "core/joint_table.h"
 
 namespace simcap {
 namespace fs = std::filesystem;
@@ -60,20 +62,19 @@ VisibilityTable read_visibility_table(const fs::path& path,
   table.cameras = cameras;
   // frame -> (joint, camera) -> label; ordered so that the table comes out with ascending frames.
   std::map<int, std::map<std::pair<int, int>, VisibilityLabel>> rows;
+  std::unordered_map<std::string, int> joint_index;
+  std::size_t row_count = 0;
   while (csv.next()) {
-    const long frame = csv.integer(0);
-    if (frame < 0) csv.fail(0, "frame numbers start at 0");
+    const int frame = read_frame_number(csv, 0);
     const int cam = index_of(cameras, csv.text(1));
     if (cam < 0) {
       csv.fail(1, "unknown camera '" + csv.text(1) + "'; the calibration has " + joined(cameras));
     }
     const std::string& joint = csv.text(2);
     if (joint.empty()) csv.fail(2, "empty joint name");
-    int j = index_of(table.joints, joint);
-    if (j < 0) {
-      j = static_cast<int>(table.joints.size());
-      table.joints.push_back(joint);
-    }
+    const auto [it, added] = joint_index.emplace(joint, static_cast<int>(table.joints.size()));
+    if (added) table.joints.push_back(joint);
+    const int j = it->second;
     const std::string& label = csv.text(6);
     const auto* v =
         std::find_if(std::begin(kLabelled), std::end(kLabelled),
@@ -82,11 +83,14 @@ VisibilityTable read_visibility_table(const fs::path& path,
       csv.fail(6, "expected visible, self_occluded, scene_occluded or out_of_frame, got '" + label +
                       "'");
     }
-    if (!rows[static_cast<int>(frame)].emplace(std::pair{j, cam}, *v).second) {
+    if (!rows[frame].emplace(std::pair{j, cam}, *v).second) {
       csv.fail(2, "joint '" + joint + "' repeated for camera " + cameras[cam] + " in frame " +
                       std::to_string(frame));
     }
+    ++row_count;
   }
+  check_table_density(csv, row_count, rows.size(),
+                      rows.size() * table.joints.size() * cameras.size());
   for (const auto& [frame, labels] : rows) {
     table.frames.push_back(frame);
     auto& s = table.status.emplace_back(

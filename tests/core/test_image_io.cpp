@@ -6,6 +6,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/image_io.h"
+#include "tests/support/huge_png.h"
 #include "tests/support/temp_dir.h"
 
 namespace simcap {
@@ -62,6 +63,20 @@ TEST(ImageIO, ErrorsNameTheFile) {
   EXPECT_THROW(write_image(dir / "f.png", cv::Mat(4, 4, CV_32FC1)), Error);
   EXPECT_THROW(write_image(dir / "f.exr", cv::Mat(4, 4, CV_8UC1)), Error);
   EXPECT_FALSE(std::filesystem::exists(dir / "f.png"));
+}
+
+TEST(ImageIO, RefusesAHeaderClaimingTooManyPixelsBeforeAllocating) {
+  TempDir dir;
+  write_text_atomic(dir / "huge.png", simcap::testing::kHugeHeaderPng);
+  try {
+    read_image(dir / "huge.png");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("huge.png: the image is 65536x32768 pixels, more than the "
+                                         "67108864 (8192x8192) simcap allows an image"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

@@ -276,6 +276,12 @@ TEST(AsfAmc, MalformedMotionsNameTheLine) {
   word.replace(word.find("root ") + 5, 1, "x");
   EXPECT_NE(amc_error(word).find("root: expected a number, got 'x"), std::string::npos)
       << amc_error(word);
+  // A frame number beyond int (std::stoi threw std::out_of_range on it).
+  std::string huge = amc;
+  huge.replace(huge.find("\n1\n"), 3, "\n99999999999\n");
+  EXPECT_EQ(amc_error(huge),
+            "t.amc:4: expected a frame number up to 1000000 (simcap's largest frame count), got "
+            "99999999999");
   EXPECT_EQ(amc_error(":FULLY-SPECIFIED\n"), "t.amc:1: expected at least 1 frame");
 }
 

@@ -200,6 +200,12 @@ TEST(Bvh, BadInputNamesFileLineAndWhatWasExpected) {
   const std::string fewer = replace(good, "Frames: 2", "Frames: 1");
   EXPECT_NE(error_of(fewer).find("bad.bvh:20: more frames than the 1"), std::string::npos)
       << error_of(fewer);
+  // A declared frame count beyond the limit is refused before any frame is read.
+  const std::string huge = replace(good, "Frames: 2", "Frames: 1000000000");
+  EXPECT_NE(error_of(huge).find("bad.bvh:17: Frames: 1000000000 is more than simcap's largest "
+                                "frame count, 1000000"),
+            std::string::npos)
+      << error_of(huge);
   EXPECT_NE(error_of(replace(good, "Frames: 2", "Frames: two")).find("expected an integer"),
             std::string::npos);
   EXPECT_NE(error_of(replace(good, "Frame Time: 0.04", "Frame Time: 0")).find("positive"),

@@ -226,12 +226,4 @@ void check_consistency(const fs::path& dir) {
   }
 }
 
-std::map<std::string, std::string> read_tree(const fs::path& root) {
-  std::map<std::string, std::string> files;
-  for (const auto& e : fs::recursive_directory_iterator(root)) {
-    if (e.is_regular_file()) files[fs::relative(e.path(), root).string()] = read_text(e.path());
-  }
-  return files;
-}
-
 }  // namespace simcap::testing

@@ -49,7 +49,4 @@ std::map<std::string, int> count_visibility(const std::vector<Joint2d>& rows);
 // depth map's depth, masks are exactly where parts are.
 void check_consistency(const std::filesystem::path& dir);
 
-// Every file under `root`, by relative path.
-std::map<std::string, std::string> read_tree(const std::filesystem::path& root);
-
 }  // namespace simcap::testing

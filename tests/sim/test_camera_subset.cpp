@@ -13,12 +13,14 @@
 #include "core/calibration.h"
 #include "core/csv.h"
 #include "scenes/scene.h"
+#include "tests/support/file_tree.h"
 #include "tests/support/temp_dir.h"
 
 namespace simcap {
 namespace {
 namespace fs = std::filesystem;
 using testing::run_simcap;
+using testing::read_tree;
 using testing::TempDir;
 
 using Names = std::set<std::string>;
@@ -32,14 +34,6 @@ std::string render_args(const fs::path& out) {
   return "render " + studio4() + " -o " + out.string() +
          " -q --frames 2 --set 'rig.resolution=[160,120]' --set render.samples_per_pixel=2"
          " --set noise.rgb_sigma=2 --set noise.depth_sigma=0.002";
-}
-
-std::map<std::string, std::string> read_tree(const fs::path& root) {
-  std::map<std::string, std::string> files;
-  for (const auto& e : fs::recursive_directory_iterator(root)) {
-    if (e.is_regular_file()) files[fs::relative(e.path(), root).string()] = read_text(e.path());
-  }
-  return files;
 }
 
 template <typename Cameras>

@@ -14,6 +14,7 @@
 #include "core/atomic_file.h"
 #include "core/image_io.h"
 #include "tests/sim/dataset_checks.h"
+#include "tests/support/file_tree.h"
 #include "tests/support/temp_dir.h"
 
 namespace simcap {

@@ -19,6 +19,7 @@
 #include "scenes/scene.h"
 #include "sim/animated_actors.h"
 #include "tests/sim/dataset_checks.h"
+#include "tests/support/file_tree.h"
 #include "tests/support/temp_dir.h"
 
 namespace simcap {

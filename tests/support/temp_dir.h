@@ -4,8 +4,10 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace simcap::testing {
 
@@ -34,5 +36,20 @@ class TempDir {
 // Runs the simcap program with `args` (a shell-quoted string); returns its exit status and
 // captures stdout+stderr into `output`.
 int run_simcap(const std::string& args, std::string* output = nullptr);
+// The same with no file allowed to grow beyond `max_file_bytes` (ulimit -f): writes beyond
+// fail with EFBIG (SIGXFSZ is ignored), as they do on a full disk.
+int run_simcap_file_limited(const std::string& args, long max_file_bytes,
+                            std::string* output = nullptr);
+
+// `args` as one shell-quoted string for run_simcap (no argument may hold a single quote).
+inline std::string shell_words(const std::vector<std::string>& args) {
+  std::string line;
+  for (const auto& a : args) line += " '" + a + "'";
+  return line;
+}
+
+// Runs the simcap program with `args` (one per argument, no shell; output discarded) and kills
+// it with SIGKILL after `delay` unless it ended before. Returns true when it was killed.
+bool run_simcap_killed(const std::vector<std::string>& args, std::chrono::microseconds delay);
 
 }  // namespace simcap::testing

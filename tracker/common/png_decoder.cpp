@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <csetjmp>
+#include <cstring>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <vector>
+
+#include "core/image_io.h"
 
 namespace simcap::tracker {
 namespace {
@@ -45,7 +48,15 @@ bool read_rows(png_structp png, png_infop info, png_bytepp rows) {
 }  // namespace
 
 cv::Mat decode_png(const std::filesystem::path& path, int flags) {
-  auto fallback = [&] { return cv::imread(path.string(), flags); };
+  // OpenCV throws for some files it cannot read (a size beyond its own limit) instead of
+  // returning an empty image.
+  auto fallback = [&] {
+    try {
+      return cv::imread(path.string(), flags);
+    } catch (const cv::Exception&) {
+      return cv::Mat();
+    }
+  };
   if (flags != cv::IMREAD_UNCHANGED && flags != cv::IMREAD_COLOR) return fallback();
   std::error_code error;
   const auto size = std::filesystem::file_size(path, error);
@@ -56,6 +67,15 @@ cv::Mat decode_png(const std::filesystem::path& path, int flags) {
     return {};
   }
   if (bytes.size() < 8 || png_sig_cmp(bytes.data(), 0, 8) != 0) return fallback();
+  // The size the IHDR chunk (always first) claims, checked before either decoder sees the file:
+  // a file libpng refuses still goes to cv::imread, which would allocate up to 2^30 pixels.
+  if (bytes.size() >= 24 && std::memcmp(bytes.data() + 12, "IHDR", 4) == 0) {
+    const auto be32 = [&](std::size_t at) {
+      return static_cast<long>(bytes[at]) << 24 | bytes[at + 1] << 16 | bytes[at + 2] << 8 |
+             bytes[at + 3];
+    };
+    check_image_size(path, be32(16), be32(20), 1);
+  }
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   struct Release {
@@ -69,11 +89,14 @@ cv::Mat decode_png(const std::filesystem::path& path, int flags) {
       png, nullptr, [](png_structp p, png_const_charp) { png_longjmp(p, 1); },
       [](png_structp, png_const_charp) {});
   png_set_option(png, PNG_IGNORE_ADLER32, PNG_OPTION_ON);
+  // No chunk of a file this size needs more (a damaged length field asked for gigabytes).
+  png_set_chunk_malloc_max(png, std::max<png_alloc_size_t>(bytes.size(), 1 << 20));
   Source source{bytes.data(), bytes.size(), 0};
   png_set_read_fn(png, &source, read_from);
   png_uint_32 width = 0, height = 0;
   int depth = 0, colour = 0, interlace = 0;
   if (!read_header(png, info, &width, &height, &depth, &colour, &interlace)) return fallback();
+  check_image_size(path, width, height, png_get_channels(png, info));
   const bool grey = colour == PNG_COLOR_TYPE_GRAY && flags == cv::IMREAD_UNCHANGED;
   const bool rgb = colour == PNG_COLOR_TYPE_RGB;
   if (depth != 8 || interlace != PNG_INTERLACE_NONE || !(grey || rgb)) return fallback();

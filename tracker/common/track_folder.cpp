@@ -1,5 +1,9 @@
 #include "tracker/common/track_folder.h"
 
+#include <fcntl.h>
+
+#include <cstdio>
+
 #include "core/error.h"
 
 namespace simcap::tracker {
@@ -39,6 +43,15 @@ TrackFolder::~TrackFolder() {
 }
 
 void TrackFolder::commit() {
+  // An existing TRACK is exchanged with the staging folder in one step, so that a reader (or a
+  // kill) finds the previous track or the new one, never neither; file systems without the
+  // exchange get two renames through TRACK.old.
+  if (fs::exists(track_) &&
+      renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, track_.c_str(), RENAME_EXCHANGE) == 0) {
+    committed_ = true;
+    fs::remove_all(staging_);
+    return;
+  }
   const fs::path old = beside(track_, ".old");
   fs::remove_all(old);
   if (fs::exists(track_)) fs::rename(track_, old);

@@ -6,6 +6,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <random>
 
+#include "core/error.h"
+#include "tests/support/huge_png.h"
 #include "tests/support/temp_dir.h"
 #include "tracker/common/png_decoder.h"
 
@@ -62,6 +64,22 @@ TEST(PngDecoder, RefusesDamagedFilesAsOpenCvDoes) {
     const cv::Mat decoded = decode_png(path, cv::IMREAD_COLOR);
     EXPECT_TRUE(decoded.empty()) << path;
     EXPECT_TRUE(same(decoded, cv::imread(path.string(), cv::IMREAD_COLOR))) << path;
+  }
+}
+
+TEST(PngDecoder, RefusesAHeaderClaimingTooManyPixelsBeforeAllocating) {
+  testing::TempDir dir;
+  std::ofstream(dir / "huge.png", std::ios::binary) << testing::kHugeHeaderPng;
+  for (const int flags : {cv::IMREAD_UNCHANGED, cv::IMREAD_COLOR}) {
+    try {
+      decode_png(dir / "huge.png", flags);
+      FAIL() << flags;
+    } catch (const Error& e) {
+      EXPECT_NE(
+          std::string(e.what()).find("65536x32768 pixels, more than the 67108864 (8192x8192)"),
+          std::string::npos)
+          << e.what();
+    }
   }
 }
 

@@ -1,0 +1,16 @@
+// Fuzz target: an X3D HAnimMotion (parse_x3d_motion) for the default humanoid, resampled to 30
+// frames/s as a motion is before rendering (its frameDuration sets the work).
+#include "models/humanoid.h"
+#include "models/resample.h"
+#include "models/x3d_humanoid.h"
+#include "tests/fuzz/fuzz_input.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const simcap::Skeleton humanoid = simcap::build_humanoid();
+  simcap::fuzz::expect_value_or_error([&] {
+    const simcap::Motion motion =
+        simcap::parse_x3d_motion(simcap::fuzz::as_text(data, size), "fuzz.x3d", humanoid);
+    simcap::resample_motion(motion, 30.0);
+  });
+  return 0;
+}
