@@ -28,11 +28,15 @@ void add_track(CLI::App& app, Action& action) {
       "  simcap track out/studio4 -o out/track_oracle --oracle\n"
       "  simcap track out/studio4 -o out/track --inspect 0,100\n"
       "  simcap track out/studio4 -o out/track_sik --method sik --sik-noise 0.02\n"
+      "  simcap track out/studio4 -o out/track_sik_px --method sik --effectors multiview\n"
+      "  simcap track out/gestures -o out/track_depth --method sik --effectors depth --init auto\n"
+      "  simcap track out/monocular -o out/track_mono --method monocular --particles 200\n"
+      "  simcap track out/studio4 -o out/track --export bvh,x3d,bap\n"
       "Writes TRACK/joints3d.csv (frame,joint,x,y,z; the HE15 joints in H-Anim names) and\n"
-      "TRACK/diagnostics/: centerline.csv, timings.csv, reinitializations.csv,\n"
+      "TRACK/diagnostics/ (moschini: centerline.csv, timings.csv, reinitializations.csv,\n"
       "body_dimensions.csv, for subtracted silhouettes silhouette_iou.csv, and with --inspect\n"
-      "inspect/FRAME/camNN.png and hull.csv. TRACK is written whole or not at all: a run that\n"
-      "fails leaves a previous TRACK as it was.");
+      "inspect/FRAME/camNN.png and hull.csv; each family's notes list its own). TRACK is written\n"
+      "whole or not at all: a run that fails leaves a previous TRACK as it was.");
   cmd->callback([&action, options, dataset, out] {
     action = [options, dataset, out] {
       const TrackSummary s = tracker::track_dataset(*dataset, *out, *options);
