@@ -63,7 +63,7 @@ struct BodyVariation {
 
 struct Actor {
   std::string name = "actor0";
-  BodySource body;  // simcap's humanoid (parameters, shape) or a body file
+  BodySource body;     // simcap's humanoid (parameters, shape) or a body file
   BodyVariation vary;  // per-seed variation of the humanoid (scenes/seeded_choices.cpp)
   std::array<Rgb, kMaterialRegionCount> colors = {
       Rgb{0.85f, 0.66f, 0.53f}, Rgb{0.20f, 0.35f, 0.65f}, Rgb{0.25f, 0.25f, 0.30f},

@@ -26,8 +26,9 @@ struct TrackOptions {
   TrackMethod method = TrackMethod::automatic;
   // Options every family shares; the registry hands them to the family that runs.
   InitMethod init = InitMethod::gt;
-  SilhouetteMethod silhouettes = SilhouetteMethod::gt;  // moschini, monocular; sik from pixels (pelvis)
-  std::uint64_t seed = 1;                               // sik's noise, monocular's particles
+  SilhouetteMethod silhouettes =
+      SilhouetteMethod::gt;  // moschini, monocular; sik from pixels (pelvis)
+  std::uint64_t seed = 1;    // sik's noise, monocular's particles
   std::vector<int> inspect;  // frames to lay open in diagnostics/inspect/ (moschini, monocular)
   // Every frame starts from its ground-truth pose (moschini, monocular): a diagnostic of the
   // error the body model and the cues leave without the search's.

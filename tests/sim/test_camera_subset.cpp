@@ -19,8 +19,8 @@
 namespace simcap {
 namespace {
 namespace fs = std::filesystem;
-using testing::run_simcap;
 using testing::read_tree;
+using testing::run_simcap;
 using testing::TempDir;
 
 using Names = std::set<std::string>;
