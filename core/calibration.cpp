@@ -1,5 +1,6 @@
 #include "core/calibration.h"
 
+#include <yaml-cpp/yaml.h>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/core/persistence.hpp>
@@ -106,8 +107,23 @@ class FieldReader {
   std::string camera_;
 };
 
+// OpenCV 4.6's YAML reader loops forever on some malformed files (a fuzzing finding, kept in
+// tests/fuzz/regressions/calibration_opencv/), so yaml-cpp checks the syntax first; its errors
+// also name the line, which OpenCV's do not.
+void check_yaml_syntax(const fs::path& path) {
+  std::string text = read_text(path);
+  // OpenCV's header "%YAML:1.0" is a directive yaml-cpp refuses; blanking it keeps line numbers.
+  if (text.starts_with("%YAML:")) text.erase(0, text.find('\n'));
+  try {
+    YAML::LoadAll(text);
+  } catch (const YAML::Exception& e) {
+    throw_input_error(path, e.mark.line + 1, "", "not valid YAML: " + e.msg);
+  }
+}
+
 cv::FileStorage open_for_reading(const fs::path& path) {
   if (!fs::exists(path)) throw Error(path.string() + ": calibration file not found");
+  check_yaml_syntax(path);
   try {
     cv::FileStorage fsr(path.string(), cv::FileStorage::READ);
     if (!fsr.isOpened()) throw Error(path.string() + ": cannot open as an OpenCV YAML file");
