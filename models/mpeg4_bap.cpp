@@ -92,7 +92,9 @@ class Tokens {
         ++line_;
         at_line_start_ = true;
         ++pos_;
-      } else if (c == ' ' || c == '\t' || c == '\r') {
+      } else if (std::isspace(static_cast<unsigned char>(c))) {
+        // Every byte the token loop below stops at, '\f' and '\v' too: a separator skipped
+        // here but not there gave an empty token that never advanced (a fuzzing finding).
         ++pos_;
       } else if (c == '#' && at_line_start_) {
         while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;

@@ -90,6 +90,12 @@ TEST(Mpeg4Bap, BadFilesNameTheLine) {
             }).find("end of the file"),
             std::string::npos);
   EXPECT_NO_THROW(parse_bap("3.1 x 25 1\n# note\n" + mask_line + "\n7 15\n", "f.bap"));
+  // Any whitespace separates, and a frame with a missing value is an error, not a 0.
+  EXPECT_EQ(parse_bap("3.1\fx\v25 1\n" + mask_line + "\n7\f15\n", "f.bap").frames[0].number, 7);
+  EXPECT_NE(testing::error_of([&] {
+              parse_bap("3.1 x 25 1\n" + mask_line + "\n7 \f\n", "f.bap");
+            }).find("l_hip_flexion"),
+            std::string::npos);
   BapFile spaced;
   spaced.name = "two words";
   EXPECT_THROW(format_bap(spaced), Error);
