@@ -1,9 +1,12 @@
 #include "core/calibration.h"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
+
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/core/persistence.hpp>
+#include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -13,6 +16,8 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kRotationTolerance = 1e-6;
+// OpenCV's calibration files hold one YAML document; EasyMocap's too.
+constexpr int kMaxYamlDocuments = 4;
 
 cv::Mat to_mat(const Eigen::MatrixXd& m) {
   cv::Mat out;
@@ -107,15 +112,42 @@ class FieldReader {
   std::string camera_;
 };
 
+// yaml-cpp events, dropped: the syntax check below needs no document tree.
+struct IgnoreYamlEvents : YAML::EventHandler {
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                const std::string&) override {}
+  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {}
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {}
+  void OnMapEnd() override {}
+};
+
 // OpenCV 4.6's YAML reader loops forever on some malformed files (a fuzzing finding, kept in
 // tests/fuzz/regressions/calibration_opencv/), so yaml-cpp checks the syntax first; its errors
-// also name the line, which OpenCV's do not.
+// also name the line, which OpenCV's do not. Documents are counted because yaml-cpp 0.7 itself
+// returns empty documents without end on some inputs (a file holding only ","), which is why
+// this is not YAML::LoadAll.
 void check_yaml_syntax(const fs::path& path) {
   std::string text = read_text(path);
   // OpenCV's header "%YAML:1.0" is a directive yaml-cpp refuses; blanking it keeps line numbers.
   if (text.starts_with("%YAML:")) text.erase(0, text.find('\n'));
+  std::istringstream in(text);
   try {
-    YAML::LoadAll(text);
+    YAML::Parser parser(in);
+    IgnoreYamlEvents events;
+    for (int documents = 0; parser.HandleNextDocument(events);) {
+      if (++documents > kMaxYamlDocuments) {
+        throw_input_error(path, 0, "",
+                          "not a calibration file: more than " + std::to_string(kMaxYamlDocuments) +
+                              " YAML documents");
+      }
+    }
   } catch (const YAML::Exception& e) {
     throw_input_error(path, e.mark.line + 1, "", "not valid YAML: " + e.msg);
   }

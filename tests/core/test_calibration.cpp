@@ -160,6 +160,10 @@ TEST(Calibration, MissingAndGarbledFilesAreErrors) {
   write_text_atomic(dir / "bad.yaml", "%YAML:1.0\n---\ncamera_names: [ \"a\"\n  : : :\n");
   const auto msg = error_of([&] { read_opencv_calibration(dir / "bad.yaml"); });
   EXPECT_NE(msg.find("bad.yaml:4: not valid YAML"), std::string::npos) << msg;
+  // yaml-cpp 0.7 reads this as endless empty documents (YAML::LoadAll never returns).
+  write_text_atomic(dir / "comma.yaml", "%YAML:1.0\n---\n,\n");
+  const auto comma = error_of([&] { read_opencv_calibration(dir / "comma.yaml"); });
+  EXPECT_NE(comma.find("comma.yaml"), std::string::npos) << comma;
 }
 
 TEST(Calibration, EasyMocapMissingFieldNamesTheFile) {
