@@ -120,8 +120,8 @@ TEST(Sweep, BadFilesAreNamed) {
 }
 
 TEST(Sweep, ShippedSweepsLoad) {
-  for (const char* name :
-       {"cameras.yaml", "motions.yaml", "occlusion.yaml", "silhouettes.yaml", "tracker.yaml"}) {
+  for (const char* name : {"cameras.yaml", "monocular.yaml", "motions.yaml", "occlusion.yaml",
+                           "silhouettes.yaml", "tracker.yaml"}) {
     const SweepSpec spec = load_sweep(fs::path(SIMCAP_SOURCE_DIR) / "stress" / name);
     EXPECT_GE(sweep_points(spec).size(), 2u) << name;
   }
@@ -129,6 +129,11 @@ TEST(Sweep, ShippedSweepsLoad) {
       sweep_points(load_sweep(fs::path(SIMCAP_SOURCE_DIR) / "stress" / "cameras.yaml"));
   ASSERT_EQ(cameras.size(), 5u);
   EXPECT_EQ(cameras[4].config.scene_overrides.back(), "rig.count=8");
+  // 4 cameras x 6 motions x 4 particle counts, the particle count varying fastest.
+  const auto monocular =
+      sweep_points(load_sweep(fs::path(SIMCAP_SOURCE_DIR) / "stress" / "monocular.yaml"));
+  ASSERT_EQ(monocular.size(), 96u);
+  EXPECT_EQ(monocular[1].labels, (std::vector<std::string>{"front 2.6 m", "raise", "200"}));
 }
 
 // A stand-in loop: every joint is 90/count mm off along x; the count 3 point fails.

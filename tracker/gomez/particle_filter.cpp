@@ -28,6 +28,12 @@ bool is_arm_chain(const BodyDofs& dofs, int i) {
 
 }  // namespace
 
+bool h2_diffuses(const Dof& dof, const std::array<bool, kPartCount>& moved) {
+  if (moved[static_cast<int>(dof.part)]) return true;
+  return dof.translation &&
+         (moved[static_cast<int>(Part::left_leg)] || moved[static_cast<int>(Part::right_leg)]);
+}
+
 // One random stream per (seed, frame, stream): the filter's result does not depend on which
 // thread handled which group.
 struct ParticleFilter::Rng {
@@ -57,7 +63,7 @@ State ParticleFilter::diffuse(const State& x, const std::array<bool, kPartCount>
   const double S = options_.diffusion;
   State y = x;
   for (int i = 0; i < dofs.size(); ++i) {
-    if (!parts[static_cast<int>(dofs[i].part)]) continue;
+    if (!h2_diffuses(dofs[i], parts)) continue;
     if (ee && is_arm_chain(dofs, i)) continue;
     y[i] += S * dofs[i].step * rng.normal();
   }
@@ -169,7 +175,7 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
   // The DOFs this frame's diffusion moves: H3's simplices span them.
   std::vector<int> active;
   for (int i = 0; i < D; ++i) {
-    if (out.moved[static_cast<int>(dofs[i].part)]) active.push_back(i);
+    if (h2_diffuses(dofs[i], out.moved)) active.push_back(i);
   }
   const int d = static_cast<int>(active.size());
   const auto energy_of = [&](const State& x) { return scorer_->energy_of(x, current); };

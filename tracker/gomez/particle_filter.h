@@ -53,6 +53,12 @@ struct FilterStep {
   std::array<bool, kPartCount> moved{};  // H2's motion detection
 };
 
+// Whether H2 diffuses `dof` when the parts `moved` moved: the DOFs of those parts, and the root's
+// translation also when a leg moved. The translation belongs to the torso, but a walk's slow
+// start shifts the torso by about a pixel a frame, too little for H2 to see, while the legs'
+// stride shows (simcap's addition for the full body; the thesis's seated user did not walk).
+bool h2_diffuses(const Dof& dof, const std::array<bool, kPartCount>& moved);
+
 class ParticleFilter {
  public:
   // Keeps references to the scorer and the arms (`arms` may be null when H4 and H5 are off).

@@ -1,13 +1,16 @@
 // The body's state <-> pose conversions and the arms' analytic kinematics: state_of inverts pose,
 // kinematic flipping (H4) keeps the elbows' and wrists' projections while moving them in depth,
-// and the end-effector IK (H5) puts the wrist where it is asked.
+// and the end-effector IK (H5) puts the wrist where it is asked; H2 diffuses the root with the
+// legs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <numbers>
 
 #include "core/camera.h"
 #include "models/humanoid.h"
 #include "tracker/gomez/body.h"
+#include "tracker/gomez/particle_filter.h"
 
 namespace simcap::tracker::gomez {
 namespace {
@@ -44,6 +47,34 @@ TEST(BodyDofs, StateOfInvertsPose) {
   y = s.body.dofs.clamp(y);
   const State back = s.body.dofs.state_of(s.body.dofs.pose(y), s.x);
   EXPECT_LT((back - y).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+TEST(BodyDofs, H2DiffusesTheRootWithTheLegs) {
+  const Scene s;
+  const BodyDofs& dofs = s.body.dofs;
+  const auto diffused = [&](std::initializer_list<Part> parts) {
+    std::array<bool, kPartCount> moved{};
+    for (const Part p : parts) moved[static_cast<int>(p)] = true;
+    std::vector<std::string> names;
+    for (const Dof& d : dofs.dofs()) {
+      if (h2_diffuses(d, moved)) names.push_back(d.name);
+    }
+    return names;
+  };
+  const auto has = [](const std::vector<std::string>& names, const char* name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
+  const auto arm = diffused({Part::left_arm});
+  EXPECT_TRUE(has(arm, "l_elbow_flexion"));
+  EXPECT_FALSE(has(arm, "root_tx"));
+  EXPECT_FALSE(has(arm, "r_elbow_flexion"));
+  const auto leg = diffused({Part::right_leg});
+  EXPECT_TRUE(has(leg, "root_tx"));
+  EXPECT_TRUE(has(leg, "root_tz"));
+  EXPECT_FALSE(has(leg, "root_turn"));
+  EXPECT_FALSE(has(leg, "l_knee_flexion"));
+  EXPECT_TRUE(has(diffused({Part::torso}), "root_turn"));
+  EXPECT_TRUE(diffused({}).empty());
 }
 
 TEST(ArmKinematics, FlippingKeepsTheProjectionsAndMovesInDepth) {
