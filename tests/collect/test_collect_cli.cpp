@@ -170,6 +170,19 @@ TEST(CollectCli, SlurmScriptAsksForAnArrayWithMeasuredCost) {
   EXPECT_NE(out.find("sbatch --array=0-2 " + (c / "slurm" / "collect.sbatch").string()),
             std::string::npos)
       << out;
+  // More shards than sequences: tasks split frames, up to one per frame (4 x 2 here); sequence
+  // 3 is frames 0-1 of units 6 and 7.
+  ASSERT_EQ(
+      run_simcap("collect " + spec.string() + " -o " + c.string() + " --slurm --shards 20", &out),
+      0)
+      << out;
+  EXPECT_NE(read_text(c / "slurm" / "collect.sbatch").find("#SBATCH --array=0-7\n"),
+            std::string::npos);
+  ASSERT_EQ(run_simcap("collect " + spec.string() + " -o " + c.string() + " -q --ids 0-2", &out), 0)
+      << out;
+  ASSERT_EQ(run_simcap("collect --status " + c.string(), &out), 1) << out;
+  EXPECT_NE(out.find("missing  1  3"), std::string::npos) << out;
+  EXPECT_NE(out.find("sbatch --array=6-7 "), std::string::npos) << out;
 }
 
 }  // namespace
