@@ -171,11 +171,12 @@ void add_collect(CLI::App& app, Action& action) {
       "complete; a re-run skips finished sequences and continues an interrupted one. Shards are\n"
       "independent processes writing into the same OUT; sequence bytes do not depend on the\n"
       "sharding. With fewer sequences than shards each sequence is split into frame ranges,\n"
-      "assembled into the sequence by the process that completes the last one. Exit status 1 when "
-      "a sequence failed (--status: when some are unfinished).\n"
+      "assembled into the sequence by the process that completes the last one.\n"
+      "Exit status 1 when a sequence failed (--status: when some are unfinished).\n"
       "Examples:\n"
       "  simcap collect stress/collections/small.yaml -o out/c\n"
       "  simcap collect stress/collections/small.yaml -o out/c --shard 1/4\n"
+      "  simcap collect stress/collections/long.yaml -o out/long --shard 0/2   (frame ranges)\n"
       "  simcap collect stress/collections/small.yaml -o out/c --slurm --shards 4 --submit\n"
       "  simcap collect --status out/c");
   cmd->callback([&action, a] { action = [a] { return run_collect(*a); }; });
