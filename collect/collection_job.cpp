@@ -1,6 +1,7 @@
 #include "collect/collection_job.h"
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <oneapi/tbb/info.h>
 
@@ -119,6 +120,105 @@ int render_sequence(const CollectionSpec& spec, const fs::path& out, int id) {
   return r.frames;
 }
 
+fs::path chunk_root(const fs::path& out, int id) {
+  return out / ".staging" / (sequence_folder(id) + ".chunks");
+}
+
+std::string chunk_name(const CollectionUnit& u) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "frames_%06d-%06d", u.first, u.end);
+  return buf;
+}
+
+// The range `chunk` of a sequence split into `chunks`.
+CollectionUnit unit_of(int id, int frames, int chunk, int chunks) {
+  const auto at = [&](int c) {
+    return static_cast<int>(static_cast<long long>(c) * frames / chunks);
+  };
+  return {id, at(chunk), at(chunk + 1), chunk, chunks};
+}
+
+// A name no other process uses at the same time, on any node of a cluster.
+std::string process_name() {
+  char host[256] = {};
+  gethostname(host, sizeof host - 1);
+  return std::string(host) + "." + std::to_string(getpid());
+}
+
+void link_or_copy(const fs::path& from, const fs::path& to) {
+  std::error_code ec;
+  fs::create_directories(to.parent_path());
+  fs::create_hard_link(from, to, ec);
+  if (ec) fs::copy_file(from, to, fs::copy_options::overwrite_existing);
+}
+
+// Assembles the complete frame ranges of sequence `u.id` into one dataset and moves it into
+// place: the first range's folder whole, the others' camera images (resume rewrites the fixed
+// files and meta.json, renders the backgrounds and computes the ground truth of every frame).
+void finalise_sequence(const CollectionSpec& spec, const fs::path& out, const CollectionUnit& u) {
+  const CollectionSequence s = collection_sequence(spec, u.id);
+  const fs::path root = chunk_root(out, u.id);
+  const fs::path assembly = root / ("assembly." + process_name());
+  fs::remove_all(assembly);
+  double seconds = 0;
+  for (int c = 0; c < u.chunks; ++c) {
+    const fs::path chunk = root / chunk_name(unit_of(u.id, spec.frames, c, u.chunks));
+    const Json meta = Json::parse(read_text(chunk / "meta.json"));
+    seconds += meta.at("timings").at("total_s").get<double>();
+    for (const auto& camera : meta.at("cameras")) {
+      for (const auto& e : fs::recursive_directory_iterator(chunk / camera.get<std::string>())) {
+        if (e.is_regular_file()) {
+          link_or_copy(e.path(), assembly / e.path().lexically_relative(chunk));
+        }
+      }
+    }
+    if (c == 0) {
+      for (const auto& e : fs::directory_iterator(chunk)) {
+        if (e.is_regular_file()) link_or_copy(e.path(), assembly / e.path().filename());
+      }
+    }
+  }
+  RenderOptions options = render_options(spec, s);
+  options.resume = true;
+  const RenderSummary r = render_dataset(s.scene, assembly, options);
+  write_text_atomic(assembly / kSequenceFile,
+                    sequence_record(s, r.frames, seconds + r.seconds).dump(2) + "\n");
+  std::error_code ec;
+  fs::rename(assembly, out / sequence_folder(u.id), ec);
+  if (ec && !is_done(out, u.id)) {
+    throw Error((out / sequence_folder(u.id)).string() +
+                ": cannot move into place: " + ec.message());
+  }
+  fs::remove_all(root, ec);  // the ranges, and copies of processes that lost a race or died
+  fs::remove(failed_record(out, u.id), ec);
+}
+
+// Renders the images of one frame range, and finalises its sequence when it completes the
+// last range. Returns the frames rendered.
+int render_chunk(const CollectionSpec& spec, const fs::path& out, const CollectionUnit& u) {
+  const fs::path root = chunk_root(out, u.id);
+  const fs::path done = root / chunk_name(u);
+  int frames = 0;
+  if (!fs::is_directory(done)) {
+    const fs::path part = root / (chunk_name(u) + ".part");
+    RenderOptions options = render_options(spec, collection_sequence(spec, u.id));
+    options.image_frames = RenderOptions::FrameRange{u.first, u.end};
+    options.resume = fs::exists(part / "meta.json");
+    options.overwrite = !options.resume;
+    frames = render_dataset(collection_sequence(spec, u.id).scene, part, options).frames;
+    std::error_code ec;
+    fs::rename(part, done, ec);
+    if (ec) throw Error(done.string() + ": cannot move into place: " + ec.message());
+  }
+  for (int c = 0; c < u.chunks; ++c) {
+    if (!fs::is_directory(root / chunk_name(unit_of(u.id, spec.frames, c, u.chunks)))) {
+      return frames;
+    }
+  }
+  finalise_sequence(spec, out, u);
+  return frames;
+}
+
 }  // namespace
 
 std::string sequence_folder(int id) {
@@ -127,20 +227,41 @@ std::string sequence_folder(int id) {
   return buf;
 }
 
-std::vector<int> shard_ids(int count, int shard, int shards) {
+int chunks_per_sequence(int count, int frames, int shards) {
+  if (count >= shards) return 1;
+  return std::min(frames, (shards + count - 1) / count);
+}
+
+std::vector<CollectionUnit> shard_units(int count, int frames, int shard, int shards) {
   if (shards < 1 || shard < 0 || shard >= shards) {
     throw Error("--shard: expected K/N with 0 <= K < N, got " + std::to_string(shard) + "/" +
                 std::to_string(shards));
   }
-  std::vector<int> ids;
-  for (int i = shard; i < count; i += shards) ids.push_back(i);
-  return ids;
+  const int chunks = chunks_per_sequence(count, frames, shards);
+  std::vector<CollectionUnit> units;
+  for (long long u = shard; u < static_cast<long long>(count) * chunks; u += shards) {
+    units.push_back(
+        unit_of(static_cast<int>(u / chunks), frames, static_cast<int>(u % chunks), chunks));
+  }
+  return units;
+}
+
+std::vector<int> shards_holding(const std::vector<int>& ids, int count, int frames, int shards) {
+  const int chunks = chunks_per_sequence(count, frames, shards);
+  std::set<int> held;
+  for (int id : ids) {
+    for (int c = 0; c < chunks; ++c) {
+      held.insert(static_cast<int>((static_cast<long long>(id) * chunks + c) % shards));
+    }
+  }
+  return {held.begin(), held.end()};
 }
 
 CollectSummary run_collection(const CollectionSpec& spec, const fs::path& out,
                               const CollectOptions& options) {
   const auto start = Clock::now();
-  std::vector<int> ids = shard_ids(spec.count, options.shard, options.shards);
+  std::vector<CollectionUnit> units =
+      shard_units(spec.count, spec.frames, options.shard, options.shards);
   if (!options.ids.empty()) {
     for (int id : options.ids) {
       if (id < 0 || id >= spec.count) {
@@ -149,24 +270,33 @@ CollectSummary run_collection(const CollectionSpec& spec, const fs::path& out,
       }
     }
     const std::set<int> wanted(options.ids.begin(), options.ids.end());
-    std::erase_if(ids, [&](int id) { return !wanted.count(id); });
+    std::erase_if(units, [&](const CollectionUnit& u) { return !wanted.count(u.id); });
   }
   claim_collection_output(spec, out);
   CollectSummary summary;
-  summary.selected = static_cast<int>(ids.size());
-  Progress progress("collect", summary.selected, options.quiet, "sequences");
-  for (int id : ids) {
-    if (is_done(out, id)) {
+  summary.chunks = chunks_per_sequence(spec.count, spec.frames, options.shards);
+  summary.selected = static_cast<int>(units.size());
+  Progress progress("collect", summary.selected, options.quiet,
+                    summary.chunks > 1 ? "frame ranges" : "sequences");
+  for (const CollectionUnit& u : units) {
+    if (is_done(out, u.id)) {
       ++summary.skipped;
     } else {
       try {
-        summary.frames += render_sequence(spec, out, id);
+        summary.frames +=
+            u.chunks > 1 ? render_chunk(spec, out, u) : render_sequence(spec, out, u.id);
         ++summary.rendered;
-      } catch (const Error& e) {
-        ++summary.failed;
-        write_text_atomic(failed_record(out, id), std::string(e.what()) + "\n");
-        if (!options.quiet) {
-          std::fprintf(stderr, "collect: %s failed: %s\n", sequence_folder(id).c_str(), e.what());
+      } catch (const std::exception& e) {
+        // A finaliser that lost a race to another process may fail once that one is done.
+        if (is_done(out, u.id)) {
+          ++summary.rendered;
+        } else {
+          ++summary.failed;
+          write_text_atomic(failed_record(out, u.id), std::string(e.what()) + "\n");
+          if (!options.quiet) {
+            std::fprintf(stderr, "collect: %s failed: %s\n", sequence_folder(u.id).c_str(),
+                         e.what());
+          }
         }
       }
     }
@@ -237,6 +367,7 @@ CollectionStatus collection_status(const fs::path& out) {
                 " was collected from it");
   }
   status.count = spec.count;
+  status.frames = spec.frames;
   for (int id = 0; id < spec.count; ++id) {
     if (is_done(out, id)) {
       status.done.push_back(id);

@@ -11,14 +11,15 @@
 namespace simcap {
 
 struct CollectOptions {
-  int shard = 0;  // this process renders the ids i with i % shards == shard
+  int shard = 0;  // this process renders the units (shard_units) of shard K of N
   int shards = 1;
   std::vector<int> ids;  // when not empty: only these ids (of this shard)
   bool quiet = false;
 };
 
 struct CollectSummary {
-  int selected = 0;  // sequences of this shard
+  int chunks = 1;    // frame ranges per sequence (chunks_per_sequence)
+  int selected = 0;  // work units of this shard: sequences, or frame ranges when chunks > 1
   int rendered = 0, skipped = 0, failed = 0;
   long frames = 0;  // frames rendered by this run
   double seconds = 0;
@@ -32,13 +33,35 @@ std::string sequence_folder(int id);
 // holds another spec's collection or files that are not a collection's.
 void claim_collection_output(const CollectionSpec& spec, const std::filesystem::path& out);
 
-// The ids of shard `shard` of `shards` (round robin, so shards get the scenes and motions in
-// equal shares).
-std::vector<int> shard_ids(int count, int shard, int shards);
+// A work unit of a shard: frames [first, end) of sequence `id`, frame range `chunk` of
+// `chunks` (one unit is the whole sequence when chunks == 1).
+struct CollectionUnit {
+  int id = 0;
+  int first = 0, end = 0;
+  int chunk = 0, chunks = 1;
+};
 
-// Renders the selected sequences of `spec` into `out`. A sequence is rendered into
+// Frame ranges per sequence for `shards` shards: 1 when there are at least as many sequences
+// as shards, else ceil(shards / count) (at most `frames`), so that every shard has work.
+int chunks_per_sequence(int count, int frames, int shards);
+
+// The units of shard `shard` of `shards`: unit u = id * chunks + chunk goes to shard u % N
+// (round robin, so shards get the scenes and motions in equal shares); range `chunk` of a
+// sequence is frames [chunk * frames / chunks, (chunk + 1) * frames / chunks). Error when
+// not 0 <= shard < shards.
+std::vector<CollectionUnit> shard_units(int count, int frames, int shard, int shards);
+
+// The shards (array tasks) that hold some unit of the sequences `ids`.
+std::vector<int> shards_holding(const std::vector<int>& ids, int count, int frames, int shards);
+
+// Renders the selected units of `spec` into `out`. A whole sequence is rendered into
 // OUT/.staging/seq_NNNNNN (continued with render's resume after a kill) and renamed to
-// OUT/seq_NNNNNN when complete, with its sequence.json (parameters, render seconds). A sequence
+// OUT/seq_NNNNNN when complete, with its sequence.json (parameters, render seconds). A frame
+// range renders its images into OUT/.staging/seq_NNNNNN.chunks/frames_A-B.part (resumable),
+// renamed to frames_A-B when complete; the process that finds all ranges of a sequence complete
+// assembles them (hard links) in a folder of its own there, completes the dataset with a
+// resume render (backgrounds, ground truth, meta.json) and renames it to OUT/seq_NNNNNN; when
+// two processes race, the second rename fails and its copy is dropped. A sequence
 // whose render fails is recorded in OUT/failed/seq_NNNNNN.txt and the others go on. OUT must be
 // new or hold this spec's collection (OUT/collection.json). Rewrites OUT/index.csv and
 // OUT/index.json at the end. Progress (sequences, frames/s, ETA) on stderr.
@@ -48,6 +71,7 @@ CollectSummary run_collection(const CollectionSpec& spec, const std::filesystem:
 struct CollectionStatus {
   std::filesystem::path spec;  // the spec OUT was collected from
   int count = 0;
+  int frames = 0;  // per sequence
   std::vector<int> done, failed, missing;
 };
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <optional>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -83,19 +84,54 @@ std::string quoted(const fs::path& p) {
   return yaml_text(YAML::Node(p.string()));
 }
 
-// The clips of a motion folder: its .bvh files, sorted by name so every process lists them in
-// the same order.
-std::vector<fs::path> folder_clips(const Field& f, const fs::path& dir) {
+std::string lower_extension(const fs::path& p) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  return ext;
+}
+
+// A motion clip of a folder: a BVH file, or an AMC file with the ASF skeleton it moves.
+struct FolderClip {
+  fs::path file, asf;
+};
+
+// The ASF of `amc` in a folder holding `asfs`: the folder's only one, else CMU's naming
+// (subject 131's 131_01.amc moves 131.asf).
+fs::path asf_of(const Field& f, const fs::path& amc, const std::vector<fs::path>& asfs) {
+  if (asfs.size() == 1) return asfs.front();
+  const std::string stem = amc.stem().string();
+  const std::string subject = stem.substr(0, stem.find('_'));
+  for (const fs::path& asf : asfs) {
+    if (asf.stem().string() == subject) return asf;
+  }
+  f.fail("no ASF skeleton for " + amc.filename().string() + " in its folder (expected " + subject +
+         ".asf, the only *.asf, or an 'asf' key)");
+}
+
+// The clips of a motion folder: its .bvh files and its .amc files with their ASF (`asf`, when
+// given, for all of them), sorted by name so every process lists them in the same order.
+std::vector<FolderClip> folder_clips(const Field& f, const fs::path& dir,
+                                     const std::optional<Field>& asf) {
   const fs::path folder = existing_path(f, dir);
   if (!fs::is_directory(folder)) f.fail("not a folder: " + folder.string());
-  std::vector<fs::path> clips;
+  std::vector<fs::path> bvhs, amcs, asfs;
   for (const auto& e : fs::directory_iterator(folder)) {
-    std::string ext = e.path().extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-    if (e.is_regular_file() && ext == ".bvh") clips.push_back(e.path());
+    if (!e.is_regular_file()) continue;
+    const std::string ext = lower_extension(e.path());
+    if (ext == ".bvh") bvhs.push_back(e.path());
+    if (ext == ".amc") amcs.push_back(e.path());
+    if (ext == ".asf") asfs.push_back(e.path());
   }
-  if (clips.empty()) f.fail("the folder " + folder.string() + " holds no motion clip (*.bvh)");
-  std::sort(clips.begin(), clips.end());
+  if (asf) asfs = {existing_path(*asf, dir)};
+  std::sort(asfs.begin(), asfs.end());
+  std::vector<FolderClip> clips;
+  for (const fs::path& b : bvhs) clips.push_back({b, {}});
+  for (const fs::path& a : amcs) clips.push_back({a, asf_of(f, a, asfs)});
+  if (clips.empty()) {
+    f.fail("the folder " + folder.string() + " holds no motion clip (*.bvh, or *.amc with *.asf)");
+  }
+  std::sort(clips.begin(), clips.end(),
+            [](const FolderClip& a, const FolderClip& b) { return a.file < b.file; });
   return clips;
 }
 
@@ -113,12 +149,20 @@ void read_motion(const Field& f, const fs::path& dir, std::vector<CollectionMoti
     }
   };
   if (auto folder = m.take("folder")) {
+    const std::optional<Field> asf = m.take("asf");
+    keep("fps", false);
     keep("units", false);
     m.finish();
-    for (const fs::path& clip : folder_clips(*folder, dir)) {
+    for (const FolderClip& clip : folder_clips(*folder, dir, asf)) {
       CollectionMotion one = motion;
-      one.label = clip.filename().string();
-      one.fixed.insert(one.fixed.begin(), {"bvh", quoted(clip)});
+      one.label = clip.file.filename().string();
+      if (clip.asf.empty()) {
+        std::erase_if(one.fixed, [](const auto& kv) { return kv.first == "fps"; });
+        one.fixed.insert(one.fixed.begin(), {"bvh", quoted(clip.file)});
+      } else {
+        one.fixed.insert(one.fixed.begin(),
+                         {{"amc", quoted(clip.file)}, {"asf", quoted(clip.asf)}});
+      }
       out.push_back(std::move(one));
     }
     return;
@@ -278,19 +322,25 @@ CollectionSpec load_collection(const fs::path& file) {
   for (const Field& motion : m.require("motions").items(1, kMaxChoices)) {
     read_motion(motion, dir, spec.motions);
   }
-  auto read_group = [&](const char* group, const std::string& prefix) {
-    if (auto g = m.take(group)) {
-      if (!g->is_map()) g->expected("a map of key: value, list of choices or {uniform: [lo, hi]}");
-      for (const auto& kv : g->node()) {
-        const std::string key = kv.first.as<std::string>();
-        const Field value = g->child(key, kv.second, kv.first.Mark());
-        spec.params.push_back(read_param(value, prefix + key));
+  auto read_group = [&](const char* group, const std::string& prefix,
+                        const std::vector<std::string>& keys) {
+    std::optional<Field> g = m.take(group);
+    if (!g) return false;
+    if (!g->is_map()) g->expected("a map of key: value, list of choices or {uniform: [lo, hi]}");
+    for (const auto& kv : g->node()) {
+      const std::string key = kv.first.as<std::string>();
+      const Field value = g->child(key, kv.second, kv.first.Mark());
+      if (!keys.empty() && std::find(keys.begin(), keys.end(), key) == keys.end()) {
+        value.fail("unknown key; expected " + keys.front() + " or " + keys.back());
       }
+      spec.params.push_back(read_param(value, prefix + key));
     }
+    return true;
   };
-  read_group("bodies", "actors[0].");
-  read_group("colors", "actors[0].colors.");
-  read_group("vary", "");
+  read_group("bodies", "actors[0].", {});
+  read_group("colors", "actors[0].colors.", {});
+  read_group("vary", "", {});
+  spec.camera_jitter = read_group("camera_jitter", "rig.jitter.", {"position_m", "rotation_deg"});
   long long combinations = static_cast<long long>(spec.scenes.size() * spec.motions.size());
   for (const auto& p : spec.params) {
     if (crossed(p)) combinations = std::min<long long>(combinations * p.choices.size(), kMaxCount);
@@ -339,6 +389,8 @@ CollectionSequence collection_sequence(const CollectionSpec& spec, int id) {
     s.parameters.emplace_back(p.key, display_text(v));
     s.overrides.push_back(p.key + "=" + v);
   }
+  // The cameras' directions and amounts within the ranges: from the sequence's render seed.
+  if (spec.camera_jitter) s.overrides.push_back("rig.jitter.seed=" + std::to_string(s.seed));
   return s;
 }
 

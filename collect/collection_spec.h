@@ -1,5 +1,5 @@
-// A collection spec (YAML): scenes x motions x body shapes x colours x any scene key, a count
-// and a master seed; expanded into the numbered sequences of a dataset collection.
+// A collection spec (YAML): scenes x motions x bodies x colours x camera jitter x any scene key,
+// a count and a master seed; expanded into the numbered sequences of a dataset collection.
 #pragma once
 
 #include <cstdint>
@@ -40,7 +40,8 @@ struct CollectionSpec {
   std::vector<int> scene_lines;
   std::vector<std::string> set;  // fixed "key=value" scene overrides
   std::vector<CollectionMotion> motions;
-  std::vector<CollectionParam> params;  // bodies, colours and vary, in file order
+  std::vector<CollectionParam> params;  // bodies, colours, vary and camera_jitter, in file order
+  bool camera_jitter = false;           // rig.jitter's seed is each sequence's render seed
 };
 
 // One sequence of the collection, fully resolved.
@@ -68,6 +69,7 @@ struct CollectionSequence {
 //   bodies: {height: {uniform: [1.55, 1.95]}, girth: [0.9, 1.1]}
 //   colors: {shirt: ["#aa2222", "#2244aa"]}
 //   vary: {rig.height: {uniform: [2.2, 2.6]}}
+//   camera_jitter: {position_m: {uniform: [0, 0.05]}, rotation_deg: 2}
 CollectionSpec load_collection(const std::filesystem::path& file);
 
 // Sequence `id` (0 <= id < spec.count). Lists of scenes, motions and parameters are crossed in

@@ -25,11 +25,14 @@ std::string slurm_time(long seconds) {
 }  // namespace
 
 long slurm_task_seconds(const SlurmPlan& plan) {
-  const long sequences = (plan.count + plan.shards - 1) / plan.shards;
+  const int chunks = chunks_per_sequence(plan.count, plan.frames, plan.shards);
+  const long long units = static_cast<long long>(plan.count) * chunks;
+  const long long units_per_task = (units + plan.shards - 1) / plan.shards;
+  const long long unit_frames = (plan.frames + chunks - 1) / chunks;
   const double thread_scale =
       static_cast<double>(plan.cost.threads) / std::max(1, plan.cpus_per_task);
-  const double render_s =
-      static_cast<double>(sequences) * plan.frames * plan.cost.seconds_per_frame * thread_scale;
+  const double render_s = static_cast<double>(units_per_task * unit_frames) *
+                          plan.cost.seconds_per_frame * thread_scale;
   return std::max(300L, static_cast<long>(std::ceil(3 * render_s)) + 120);
 }
 

@@ -20,7 +20,8 @@ struct SlurmPlan {
   FrameCost cost;
 };
 
-// Wall time one task may take, in seconds: its frames at the measured cost, scaled from this
+// Wall time one task may take, in seconds: the frames of its units (shard_units) at the
+// measured cost, scaled from this
 // machine's threads to cpus_per_task, times 3 for slower nodes and a shared filesystem, plus
 // 2 minutes of start-up; at least 5 minutes.
 long slurm_task_seconds(const SlurmPlan& plan);

@@ -17,6 +17,7 @@
 #include "models/procedural_actions.h"
 #include "models/shipped_assets.h"
 #include "models/urdf_io.h"
+#include "scenes/camera_jitter.h"
 #include "scenes/capture_keys.h"
 #include "scenes/scene.h"
 #include "scenes/scene_names.h"
@@ -241,6 +242,16 @@ void check_inside_room(const Field& f, const Camera& cam, const Room& room) {
          ") is outside the room (x and z within +-half the room size, y in (0, room height))");
 }
 
+CameraJitter read_camera_jitter(const Field& f) {
+  Map m(f);
+  CameraJitter j;
+  if (auto v = m.take("position_m")) j.position_m = v->number(yaml::non_negative(10));
+  if (auto v = m.take("rotation_deg")) j.rotation_deg = v->number(yaml::closed(0, 180));
+  if (auto v = m.take("seed")) j.seed = v->unsigned64();
+  m.finish();
+  return j;
+}
+
 Camera read_explicit_camera(const Field& f, int index, const Intrinsics& rig_intrinsics) {
   Map m(f);
   std::string name = camera_name(index);
@@ -339,6 +350,22 @@ std::vector<Camera> SceneReader::read_rig(const Field& f, Scene& scene) const {
       const double y = cam.centre().y();
       const auto& culprit = y <= 0 || y >= room.size.y() ? height_field : radius_field;
       check_inside_room(culprit ? *culprit : f, cam, room);
+    }
+  }
+  if (auto v = m.take("jitter")) {
+    const CameraJitter jitter = read_camera_jitter(*v);
+    // Refused when any draw could leave the room, so that no seed makes the scene invalid.
+    const Eigen::Vector3d half = 0.5 * room.size;
+    const double p = jitter.position_m;
+    for (Camera& cam : cams) {
+      const Eigen::Vector3d c = cam.centre();
+      if (std::abs(c.x()) + p >= half.x() || c.y() - p <= 0 || c.y() + p >= room.size.y() ||
+          std::abs(c.z()) + p >= half.z()) {
+        v->fail("position_m " + yaml::format_number(p) + " could move camera " + cam.name +
+                " at (" + yaml::format_number(c.x()) + ", " + yaml::format_number(c.y()) + ", " +
+                yaml::format_number(c.z()) + ") outside the room");
+      }
+      cam = jittered(cam, jitter);
     }
   }
   read_capture_keys(m, cams, scene);

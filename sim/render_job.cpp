@@ -310,6 +310,12 @@ RenderSummary render_dataset(const fs::path& scene_file, const fs::path& out_dir
   const int frames =
       scene.render.frame_count > 0 ? scene.render.frame_count : setup.actors().frames_available();
   scene.render.frame_count = frames;
+  const auto chunk = options.image_frames;
+  if (chunk && !(0 <= chunk->first && chunk->first < chunk->end && chunk->end <= frames)) {
+    throw Error("image frames [" + std::to_string(chunk->first) + ", " +
+                std::to_string(chunk->end) + ") are not a range of the " + std::to_string(frames) +
+                " frames");
+  }
   prepare_output(out_dir, scene, options);
 
   const auto& cameras = setup.cameras();
@@ -320,10 +326,10 @@ RenderSummary render_dataset(const fs::path& scene_file, const fs::path& out_dir
   write_text_atomic(out_dir / "meta.json", meta.dump(2) + "\n");
   writer.write_fixed_files(scene, *setup.actors().posed().at(0).skeleton);
   writer.write_gestures(setup.actors().labels(frames), setup.actors().posed());
-  if (!(options.resume && writer.backgrounds_complete())) {
+  if (!chunk && !(options.resume && writer.backgrounds_complete())) {
     writer.write_backgrounds(setup.render_background());
   }
-  writer.open_truth(setup.actors().posed(), scene.cameras);
+  if (!chunk) writer.open_truth(setup.actors().posed(), scene.cameras);
   const int actor_count = static_cast<int>(setup.actors().posed().size());
 
   struct FrameWork {
@@ -336,15 +342,16 @@ RenderSummary render_dataset(const fs::path& scene_file, const fs::path& out_dir
   // Image buffers of written frames are reused: fresh ones would cost page faults every frame.
   std::vector<std::vector<RenderedView>> spare_views;
   std::mutex spare_mutex;
-  Progress progress("render", frames, options.quiet);
-  int next = 0, rendered = 0;
+  const int first = chunk ? chunk->first : 0, end = chunk ? chunk->end : frames;
+  Progress progress("render", end - first, options.quiet);
+  int next = first, rendered = 0;
   double render_seconds = 0;
   std::atomic<std::int64_t> write_ns{0};
   // Frames go through three stages, pipelined so that image encoding overlaps rendering: pose,
   // ground truth and render (in order: they share the Embree scene); write the images (any
   // order, several at once); append the truth rows (in order).
   auto render_frame = [&](tbb::flow_control& fc) -> Work {
-    if (next == frames) {
+    if (next == end) {
       fc.stop();
       return nullptr;
     }
@@ -368,7 +375,7 @@ RenderSummary render_dataset(const fs::path& scene_file, const fs::path& out_dir
     return w;
   };
   auto write_images = [&](Work w) {
-    for (size_t c = 0; c < cameras.size(); ++c) {
+    for (size_t c = 0; c < cameras.size() && !chunk; ++c) {
       const cv::Mat mask =
           w->views.empty() ? read_image(writer.image_path(static_cast<int>(c), "mask", w->frame))
                            : w->views[c].mask;
@@ -383,7 +390,7 @@ RenderSummary render_dataset(const fs::path& scene_file, const fs::path& out_dir
     return w;
   };
   auto write_truth = [&](Work w) {
-    writer.append_truth(w->truth, w->boxes);
+    if (!chunk) writer.append_truth(w->truth, w->boxes);
     progress.advance();
   };
   tbb::parallel_pipeline(
@@ -391,23 +398,23 @@ RenderSummary render_dataset(const fs::path& scene_file, const fs::path& out_dir
       tbb::make_filter<void, Work>(tbb::filter_mode::serial_in_order, render_frame) &
           tbb::make_filter<Work, Work>(tbb::filter_mode::parallel, write_images) &
           tbb::make_filter<Work, void>(tbb::filter_mode::serial_in_order, write_truth));
-  writer.commit_truth();
+  if (!chunk) writer.commit_truth();
   progress.finish();
 
   RenderSummary summary;
-  summary.frames = frames;
+  summary.frames = end - first;
   summary.cameras = static_cast<int>(cameras.size());
   summary.seconds = seconds_since(start);
   summary.write_seconds = 1e-9 * static_cast<double>(write_ns.load());
   summary.dataset = out_dir;
-  meta["complete"] = true;
+  meta["complete"] = !chunk;
   meta["timings"] = {{"total_s", summary.seconds},
                      {"render_s", render_seconds},
                      {"write_thread_s", summary.write_seconds},
                      {"threads", tbb::info::default_concurrency()},
                      {"frames_rendered", rendered},
-                     {"frames_resumed", frames - rendered},
-                     {"frames_per_s", frames / summary.seconds}};
+                     {"frames_resumed", summary.frames - rendered},
+                     {"frames_per_s", summary.frames / summary.seconds}};
   write_text_atomic(out_dir / "meta.json", meta.dump(2) + "\n");
   return summary;
 }

@@ -25,6 +25,14 @@ struct RenderOptions {
   bool resume = false;
   // Replace a dataset already in `out_dir` (its simcap files and folders are removed first).
   bool overwrite = false;
+  // When set: render only the images of dataset frames [first, end) — a chunk of a sequence
+  // split across processes. No background plates, no ground-truth tables; meta.json stays
+  // "complete": false. A `resume` render of the whole sequence over the chunks' images (linked
+  // into one folder) completes it with the bytes of an uninterrupted render.
+  struct FrameRange {
+    int first = 0, end = 0;
+  };
+  std::optional<FrameRange> image_frames;
   bool quiet = false;                  // no progress on stderr
   std::vector<std::string> overrides;  // "key.path=value" scene overrides (load_scene)
 };

@@ -1,10 +1,11 @@
-// simcap bench render|track|ik: the options of each benchmark; the measurements and their
+// simcap bench render|track|ik|collect: the options of each benchmark; the measurements and their
 // same-run baselines are the bench library's (bench/).
 #include <cstdio>
 
 #include "apps/simcap/commands.h"
 #include "apps/simcap/number_checks.h"
 #include "apps/simcap/track_cli.h"
+#include "bench/collect_bench.h"
 #include "bench/ik_bench.h"
 #include "bench/render_bench.h"
 #include "bench/track_bench.h"
@@ -94,20 +95,52 @@ void add_bench_ik(CLI::App& bench, Action& action) {
   });
 }
 
+void add_bench_collect(CLI::App& bench, Action& action) {
+  auto* cmd = bench.add_subcommand(
+      "collect", "Collection frames/s of N shard processes against one process, same run");
+  static std::filesystem::path spec;
+  static CollectBenchOptions options;
+  cmd->add_option("spec", spec, "Collection spec (YAML)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--shards", options.shards, "Shard processes run at once")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 256));
+  cmd->add_option("--repeat", options.repeat, "Runs; the medians are reported")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 100));
+  cmd->footer(
+      "Example:\n"
+      "  simcap bench collect stress/collections/small.yaml --shards 2 --repeat 5\n"
+      "Each run collects the spec into new temporary folders with one process (--shard 0/1)\n"
+      "and with --shards processes at once (--shard K/N), alternating which goes first, then\n"
+      "runs one process over the finished collection: the fixed cost of a task (start-up, spec\n"
+      "checks, index). The last line is single_frames_per_s=<x> sharded_frames_per_s=<y>\n"
+      "ratio=<y/x> empty_task_s=<z>.");
+  cmd->callback([&action] {
+    action = [] {
+      options.simcap = std::filesystem::read_symlink("/proc/self/exe");
+      run_collect_benchmark(spec, options, stdout);
+      return 0;
+    };
+  });
+}
+
 }  // namespace
 
 void add_bench(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand(
-      "bench", "Measure throughput of the renderer, the tracker or inverse kinematics");
+      "bench",
+      "Measure throughput of the renderer, the tracker, inverse kinematics or collections");
   cmd->require_subcommand(1);
   cmd->footer(
       "Examples:\n"
       "  simcap bench render scenes/studio4.yaml\n"
       "  simcap bench track out/studio4\n"
-      "  simcap bench ik");
+      "  simcap bench ik\n"
+      "  simcap bench collect stress/collections/small.yaml --shards 2");
   add_bench_render(*cmd, action);
   add_bench_track(*cmd, action);
   add_bench_ik(*cmd, action);
+  add_bench_collect(*cmd, action);
 }
 
 }  // namespace simcap::cli

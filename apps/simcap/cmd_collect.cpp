@@ -4,7 +4,6 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <set>
 
 #include "apps/simcap/commands.h"
 #include "collect/collection_job.h"
@@ -62,7 +61,8 @@ int run_slurm(const CollectArgs& a, const CollectionSpec& spec) {
   plan.out = fs::absolute(a.out).lexically_normal();
   plan.count = spec.count;
   plan.frames = spec.frames;
-  plan.shards = std::min(a.shards, spec.count);
+  plan.shards = static_cast<int>(
+      std::min(static_cast<long long>(a.shards), static_cast<long long>(spec.count) * spec.frames));
   plan.max_running = a.max_running;
   plan.cpus_per_task = a.cpus_per_task;
   // The output is claimed before the measurement so that another spec's OUT is refused first.
@@ -92,13 +92,6 @@ int run_slurm(const CollectArgs& a, const CollectionSpec& spec) {
   return 0;
 }
 
-// The shards (array tasks) that hold some of `ids`.
-std::vector<int> shards_of(const std::vector<int>& ids, int shards) {
-  std::set<int> s;
-  for (int id : ids) s.insert(id % shards);
-  return {s.begin(), s.end()};
-}
-
 int run_status(const fs::path& out) {
   const CollectionStatus s = collection_status(out);
   std::printf("simcap collect: %s (%s)\n", out.string().c_str(), s.spec.string().c_str());
@@ -117,7 +110,7 @@ int run_status(const fs::path& out) {
   if (fs::exists(plan)) {
     const int shards = nlohmann::json::parse(read_text(plan)).at("shards").get<int>();
     std::printf("or on Slurm, the array tasks that hold them:\n  sbatch --array=%s %s\n",
-                id_ranges(shards_of(todo, shards)).c_str(),
+                id_ranges(shards_holding(todo, s.count, s.frames, shards)).c_str(),
                 slurm_script_path(out).string().c_str());
   }
   return 1;
@@ -135,9 +128,10 @@ int run_collect(const CollectArgs& a) {
   if (!a.ids.empty()) options.ids = parse_id_ranges(a.ids, "--ids");
   const CollectSummary s = run_collection(spec, a.out, options);
   std::printf(
-      "simcap collect: shard %d/%d: %d sequences: %d rendered, %d done before, %d failed; "
+      "simcap collect: shard %d/%d: %d %s: %d rendered, %d done before, %d failed; "
       "%ld frames in %.1f s (%.2f frames/s) -> %s\n",
-      shard, shards, s.selected, s.rendered, s.skipped, s.failed, s.frames, s.seconds,
+      shard, shards, s.selected, s.chunks > 1 ? "frame ranges" : "sequences", s.rendered, s.skipped,
+      s.failed, s.frames, s.seconds,
       s.seconds > 0 ? static_cast<double>(s.frames) / s.seconds : 0.0, a.out.string().c_str());
   return s.failed > 0 ? 1 : 0;
 }
@@ -153,7 +147,8 @@ void add_collect(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", a->out,
                   "Collection folder: seq_NNNNNN/ datasets, index.csv, index.json");
   cmd->add_option("--shard", a->shard,
-                  "Render only shard K of N (sequences i with i % N == K), e.g. 2/4")
+                  "Render only shard K of N (sequences i with i % N == K; with fewer sequences "
+                  "than shards, frame ranges of them), e.g. 2/4")
       ->default_str("0/1");
   cmd->add_option("--ids", a->ids, "Render only these sequences, e.g. 0-3,7 (see --status)");
   cmd->add_flag("--slurm", a->slurm,
@@ -175,10 +170,13 @@ void add_collect(CLI::App& app, Action& action) {
       "Each sequence is a simcap dataset rendered into OUT/.staging/ and renamed into place when\n"
       "complete; a re-run skips finished sequences and continues an interrupted one. Shards are\n"
       "independent processes writing into the same OUT; sequence bytes do not depend on the\n"
-      "sharding. Exit status 1 when a sequence failed (--status: when some are unfinished).\n"
+      "sharding. With fewer sequences than shards each sequence is split into frame ranges,\n"
+      "assembled into the sequence by the process that completes the last one.\n"
+      "Exit status 1 when a sequence failed (--status: when some are unfinished).\n"
       "Examples:\n"
       "  simcap collect stress/collections/small.yaml -o out/c\n"
       "  simcap collect stress/collections/small.yaml -o out/c --shard 1/4\n"
+      "  simcap collect stress/collections/long.yaml -o out/long --shard 0/2   (frame ranges)\n"
       "  simcap collect stress/collections/small.yaml -o out/c --slurm --shards 4 --submit\n"
       "  simcap collect --status out/c");
   cmd->callback([&action, a] { action = [a] { return run_collect(*a); }; });

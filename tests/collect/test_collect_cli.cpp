@@ -19,9 +19,9 @@ using testing::run_simcap;
 using testing::TempDir;
 namespace fs = std::filesystem;
 
-fs::path write_spec(const TempDir& dir) {
+fs::path write_spec(const TempDir& dir, int count = 4, int frames = 2) {
   const fs::path p = dir / "spec.yaml";
-  std::ofstream(p) << "count: 4\nseed: 11\nframes: 2\n"
+  std::ofstream(p) << "count: " << count << "\nseed: 11\nframes: " << frames << "\n"
                    << "scenes: [" << SIMCAP_SOURCE_DIR << "/scenes/studio4.yaml]\n"
                    << "set: {rig.resolution: [64, 48]}\n"
                    << "motions:\n  - folder: " << SIMCAP_MOCAP_DIR << "\n"
@@ -81,6 +81,49 @@ TEST(CollectCli, ShardsGiveTheUnshardedBytesAndResumeAfterAKill) {
   EXPECT_NE(out.find("done     4 / 4"), std::string::npos) << out;
 }
 
+// Fewer sequences than shards: the shards split the frames of each sequence; the process that
+// completes a sequence's last frame range assembles it, byte for byte the single-process one.
+TEST(CollectCli, FrameRangeShardsGiveTheUnshardedBytesAndResumeAfterAKill) {
+  TempDir dir;
+  const std::string s = write_spec(dir, 1, 5).string();
+  std::string out;
+  ASSERT_EQ(run_simcap("collect " + s + " -o " + (dir / "one").string() + " -q", &out), 0) << out;
+  // Three shards of one 5-frame sequence: frames [0, 1), [1, 3), [3, 5).
+  const fs::path three = dir / "three";
+  for (const char* shard : {"2/3", "0/3"}) {
+    ASSERT_EQ(run_simcap("collect " + s + " -o " + three.string() + " -q --shard " + shard, &out),
+              0)
+        << out;
+    EXPECT_NE(out.find("1 frame ranges: 1 rendered"), std::string::npos) << out;
+  }
+  const fs::path chunks = three / ".staging" / "seq_000000.chunks";
+  EXPECT_TRUE(fs::is_directory(chunks / "frames_000000-000001"));
+  EXPECT_TRUE(fs::is_directory(chunks / "frames_000003-000005"));
+  EXPECT_FALSE(fs::exists(three / "seq_000000"));
+  ASSERT_EQ(run_simcap("collect --status " + three.string(), &out), 1) << out;
+  EXPECT_NE(out.find("missing  1  0"), std::string::npos) << out;
+  // A kill of shard 1 after it rendered frame 1 of its range (frame 2 missing, a stray
+  // temporary), and a finaliser of another process killed, leaving its assembly folder.
+  const fs::path alone = dir / "alone";
+  ASSERT_EQ(run_simcap("collect " + s + " -o " + alone.string() + " -q --shard 1/3", &out), 0)
+      << out;
+  const fs::path part = chunks / "frames_000001-000003.part";
+  fs::rename(alone / ".staging" / "seq_000000.chunks" / "frames_000001-000003", part);
+  for (const auto& cam : {"cam00", "cam01", "cam02", "cam03"}) {
+    for (const auto& kind : {"rgb", "mask", "parts"}) {
+      fs::remove(part / cam / kind / "000002.png");
+    }
+  }
+  std::ofstream(part / "cam00" / "rgb" / ".000002.tmp7_0.png") << "half";
+  fs::create_directories(chunks / "assembly.deadhost.1" / "cam00");
+  ASSERT_EQ(run_simcap("collect " + s + " -o " + three.string() + " -q --shard 1/3", &out), 0)
+      << out;
+  const auto meta = nlohmann::json::parse(read_text(three / "seq_000000" / "meta.json"));
+  EXPECT_EQ(meta["timings"]["frames_resumed"], 5);  // every image came from a range
+  EXPECT_FALSE(fs::exists(three / ".staging"));
+  expect_same(dir / "one", three);
+}
+
 TEST(CollectCli, RefusesAnotherSpecsOutputAndBadShards) {
   TempDir dir;
   const fs::path spec = write_spec(dir);
@@ -127,6 +170,19 @@ TEST(CollectCli, SlurmScriptAsksForAnArrayWithMeasuredCost) {
   EXPECT_NE(out.find("sbatch --array=0-2 " + (c / "slurm" / "collect.sbatch").string()),
             std::string::npos)
       << out;
+  // More shards than sequences: tasks split frames, up to one per frame (4 x 2 here); sequence
+  // 3 is frames 0-1 of units 6 and 7.
+  ASSERT_EQ(
+      run_simcap("collect " + spec.string() + " -o " + c.string() + " --slurm --shards 20", &out),
+      0)
+      << out;
+  EXPECT_NE(read_text(c / "slurm" / "collect.sbatch").find("#SBATCH --array=0-7\n"),
+            std::string::npos);
+  ASSERT_EQ(run_simcap("collect " + spec.string() + " -o " + c.string() + " -q --ids 0-2", &out), 0)
+      << out;
+  ASSERT_EQ(run_simcap("collect --status " + c.string(), &out), 1) << out;
+  EXPECT_NE(out.find("missing  1  3"), std::string::npos) << out;
+  EXPECT_NE(out.find("sbatch --array=6-7 "), std::string::npos) << out;
 }
 
 }  // namespace

@@ -1,10 +1,13 @@
 // Collection specs: what they expand to, and the file:line errors of bad ones.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 
 #include "collect/collection_spec.h"
+#include "core/atomic_file.h"
+#include "scenes/scene.h"
 #include "tests/support/error_of.h"
 #include "tests/support/temp_dir.h"
 
@@ -113,6 +116,82 @@ std::string error_with(const std::string& from, const std::string& to) {
   return error_of([&] { load_collection(p); });
 }
 
+TEST(CollectionSpec, CameraJitterIsAnAxisSeededPerSequence) {
+  TempDir dir;
+  const fs::path p = write_spec(dir, valid_spec() +
+                                         "camera_jitter:\n"
+                                         "  position_m: {uniform: [0, 0.05]}\n"
+                                         "  rotation_deg: [1, 3]\n");
+  const CollectionSpec spec = load_collection(p);
+  EXPECT_EQ(spec.count, 12);
+  std::set<std::string> seeds, turns;
+  for (int id = 0; id < 4; ++id) {
+    const CollectionSequence s = collection_sequence(spec, id);
+    const double shift = std::stod(value(s, "rig.jitter.position_m"));
+    EXPECT_GE(shift, 0);
+    EXPECT_LE(shift, 0.05);
+    turns.insert(value(s, "rig.jitter.rotation_deg"));
+    const std::string seed = "rig.jitter.seed=" + std::to_string(s.seed);
+    EXPECT_EQ(std::count(s.overrides.begin(), s.overrides.end(), seed), 1) << id;
+    seeds.insert(seed);
+    // The scene takes the overrides: its cameras are those of the unjittered rig, moved.
+    const Scene scene = load_scene(s.scene, s.overrides);
+    std::vector<std::string> still = s.overrides;
+    std::erase_if(still, [](const std::string& o) { return o.rfind("rig.jitter", 0) == 0; });
+    const Scene base = load_scene(s.scene, still);
+    const double moved =
+        (scene.cameras[0].centre() - base.cameras[0].centre()).cwiseAbs().maxCoeff();
+    EXPECT_LE(moved, shift + 1e-12);
+    EXPECT_GT((scene.cameras[0].R - base.cameras[0].R).norm(), 0);
+  }
+  EXPECT_EQ(turns, (std::set<std::string>{"1", "3"}));  // a crossed list
+  EXPECT_EQ(seeds.size(), 4u);
+}
+
+// Split the fuzz corpus's ASF + AMC pair ("==> name <==" sections) into a folder.
+void write_asf_amc(const fs::path& folder, const std::vector<std::string>& amcs,
+                   const std::vector<std::string>& asfs) {
+  const std::string text =
+      read_text(fs::path(SIMCAP_SOURCE_DIR) / "tests/fuzz/corpus/asf_amc/cmu_like_3frames.txt");
+  const size_t amc_at = text.find("==> clip.amc <==");
+  ASSERT_NE(amc_at, std::string::npos);
+  const size_t asf_body = text.find('\n') + 1, amc_body = text.find('\n', amc_at) + 1;
+  fs::create_directories(folder);
+  for (const auto& a : asfs)
+    write_text_atomic(folder / a, text.substr(asf_body, amc_at - asf_body));
+  for (const auto& a : amcs) write_text_atomic(folder / a, text.substr(amc_body));
+}
+
+TEST(CollectionSpec, MotionFoldersOfAmcClipsFindTheirAsf) {
+  TempDir dir;
+  write_asf_amc(dir / "cmu", {"07_02.amc", "07_01.amc"}, {"07.asf", "08.asf"});
+  std::string text = valid_spec();
+  text.replace(text.find(kAssets), kAssets.size(), (dir / "cmu").string());
+  const CollectionSpec spec = load_collection(write_spec(dir, text));
+  ASSERT_EQ(spec.motions.size(), 3u);
+  EXPECT_EQ(spec.motions[0].label, "07_01.amc");
+  EXPECT_EQ(spec.motions[1].label, "07_02.amc");
+  const auto& fixed = spec.motions[0].fixed;
+  ASSERT_EQ(fixed.size(), 2u);
+  EXPECT_EQ(fixed[0].first, "amc");
+  EXPECT_EQ(fixed[1].first, "asf");
+  EXPECT_NE(fixed[1].second.find("07.asf"), std::string::npos) << fixed[1].second;
+  const CollectionSequence s = collection_sequence(spec, 0);
+  EXPECT_EQ(s.motion, "07_01.amc");
+  // A clip of another subject: no skeleton for it among several, unless named.
+  write_asf_amc(dir / "cmu", {"09_01.amc"}, {});
+  const std::string no_asf = error_of([&] { load_collection(write_spec(dir, text)); });
+  EXPECT_NE(no_asf.find("spec.yaml:7: motions[0].folder: no ASF skeleton for 09_01.amc"),
+            std::string::npos)
+      << no_asf;
+  const std::string folder = "folder: " + (dir / "cmu").string();
+  text.replace(text.find(folder), folder.size(), "{" + folder + ", asf: cmu/08.asf}");
+  const CollectionSpec named = load_collection(write_spec(dir, text));
+  ASSERT_EQ(named.motions.size(), 4u);
+  EXPECT_EQ(named.motions[2].label, "09_01.amc");
+  EXPECT_NE(named.motions[2].fixed[1].second.find("08.asf"), std::string::npos);
+}
+
 TEST(CollectionSpec, BadSpecsNameFileLineAndKey) {
   EXPECT_NE(error_with("count: 12", "cuont: 12").find("spec.yaml:1: cuont: unknown key"),
             std::string::npos)
@@ -140,6 +219,26 @@ TEST(CollectionSpec, BadSpecsNameFileLineAndKey) {
   const std::string missing = error_with("frames: 2\n", "");
   EXPECT_NE(missing.find("spec.yaml"), std::string::npos) << missing;
   EXPECT_NE(missing.find("frames"), std::string::npos) << missing;
+  const std::string jitter = valid_spec() + "camera_jitter: {positon_m: 0.1}\n";
+  TempDir jdir;
+  const std::string bad_jitter = error_of([&] { load_collection(write_spec(jdir, jitter)); });
+  EXPECT_NE(bad_jitter.find("spec.yaml:14: camera_jitter.positon_m: unknown key"),
+            std::string::npos)
+      << bad_jitter;
+  const std::string empty_jitter = error_of([&] {
+    load_collection(
+        write_spec(jdir, valid_spec() + "camera_jitter: {rotation_deg: {uniform: [3, 1]}}\n"));
+  });
+  EXPECT_NE(
+      empty_jitter.find("spec.yaml:14: camera_jitter.rotation_deg: the range [3, 1] is empty"),
+      std::string::npos)
+      << empty_jitter;
+  const std::string far_jitter = error_of([&] {
+    load_collection(write_spec(jdir, valid_spec() + "camera_jitter: {position_m: [0, 5]}\n"));
+  });
+  EXPECT_NE(far_jitter.find("spec.yaml:14: rig.jitter.position_m:"), std::string::npos)
+      << far_jitter;
+  EXPECT_NE(far_jitter.find("could move camera"), std::string::npos) << far_jitter;
   const std::string no_scene = error_with(kScene, "nowhere.yaml");
   EXPECT_NE(no_scene.find("spec.yaml:4: scenes[0]: no such file"), std::string::npos) << no_scene;
 }

@@ -7,8 +7,10 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <fstream>
 #include <random>
 #include <thread>
@@ -81,6 +83,16 @@ class Cluster {
  private:
   fs::path dir_;
 };
+
+// Waits (at most 120 s) until `job` has left the queue.
+void wait_for(const std::string& job) {
+  std::string queue = "?";
+  for (int i = 0; i < 1200 && !queue.empty(); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    ASSERT_EQ(shell(program("squeue").string() + " -h -j " + job, &queue), 0) << queue;
+  }
+  ASSERT_TRUE(queue.empty()) << "job " << job << " still queued after 120 s:\n" << queue;
+}
 
 TEST(SlurmCluster, FourTaskArrayGivesTheSingleProcessBytes) {
   for (const char* p : {"munged", "slurmctld", "slurmd", "sbatch", "squeue", "sinfo"}) {
@@ -160,18 +172,42 @@ TEST(SlurmCluster, FourTaskArrayGivesTheSingleProcessBytes) {
   const size_t at = out.find("submitted job ");
   ASSERT_NE(at, std::string::npos) << out;
   const std::string job = out.substr(at + 14, out.find('\n', at) - at - 14);
-  std::string queue = "?";
-  for (int i = 0; i < 1200 && !queue.empty(); ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    ASSERT_EQ(shell(program("squeue").string() + " -h -j " + job, &queue), 0) << queue;
-  }
-  ASSERT_TRUE(queue.empty()) << "job " << job << " still queued after 120 s:\n" << queue;
+  ASSERT_NO_FATAL_FAILURE(wait_for(job));
   ASSERT_EQ(run_simcap("collect --status " + (d / "array").string(), &out), 0)
       << out << file_text(d / "slurmd.log");
   EXPECT_EQ(std::distance(fs::directory_iterator(d / "array" / "slurm" / "logs"), {}), 8)
       << "one .out and one .err per array task";
   ASSERT_EQ(run_simcap("collect " + spec + " -o " + (d / "one").string() + " -q", &out), 0) << out;
   expect_same(d / "one", d / "array");
+
+  // The overhead of a Slurm task, measured (printed, not asserted): the same array submitted
+  // again, every task finding its sequences done. A task's log files are created when Slurm
+  // starts it (.err stays empty) and .out is last written by simcap's final line, so their
+  // times bound the task's whole life in the allocation: launch, simcap's start-up, spec
+  // checks, index.
+  const fs::path script = d / "array" / "slurm" / "collect.sbatch";
+  const auto submitted = std::chrono::system_clock::now();
+  ASSERT_EQ(shell(program("sbatch").string() + " --parsable " + script.string(), &out), 0) << out;
+  const std::string empty_job = out.substr(0, out.find_first_of(";\n"));
+  ASSERT_NO_FATAL_FAILURE(wait_for(empty_job));
+  const double array_s =
+      std::chrono::duration<double>(std::chrono::system_clock::now() - submitted).count();
+  std::vector<double> task_s;
+  double first_start_s = 1e9;
+  for (int k = 0; k < 4; ++k) {
+    const fs::path log = d / "array" / "slurm" / "logs" / (empty_job + "_" + std::to_string(k));
+    const auto start = std::chrono::file_clock::to_sys(fs::last_write_time(log.string() + ".err"));
+    const auto end = std::chrono::file_clock::to_sys(fs::last_write_time(log.string() + ".out"));
+    task_s.push_back(std::chrono::duration<double>(end - start).count());
+    first_start_s =
+        std::min(first_start_s, std::chrono::duration<double>(start - submitted).count());
+  }
+  std::sort(task_s.begin(), task_s.end());
+  std::printf(
+      "[measure] Slurm task overhead (4 tasks with nothing to do, 2 CPUs): per task %.2f s "
+      "median, %.2f s max (first log to last output); submit to first task start %.2f s; "
+      "submit to array done %.2f s\n",
+      0.5 * (task_s[1] + task_s[2]), task_s[3], first_start_s, array_s);
 }
 
 }  // namespace

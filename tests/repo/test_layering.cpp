@@ -31,8 +31,8 @@ const std::map<std::string, std::vector<std::string>>& allowed() {
         "tracker/gomez"}},
       {"validate", {"core", "models"}},
       {"bench",
-       {"core", "models", "scenes", "sim", "tracker", "tracker/common", "tracker/moschini",
-        "tracker/unzueta", "tracker/gomez"}},
+       {"core", "models", "scenes", "sim", "collect", "tracker", "tracker/common",
+        "tracker/moschini", "tracker/unzueta", "tracker/gomez"}},
   };
   return rules;
 }
