@@ -130,13 +130,19 @@ cv::Mat frame_with_disc(cv::Point2d centre, const cv::Mat& floor, const cv::Mat&
   return img;
 }
 
-TEST(Cfof, FollowsAMovingTexturedPatchToUnderAPixel) {
-  cv::RNG rng(3);
+// A grey textured floor and a red skin texture, 320x240.
+std::pair<cv::Mat, cv::Mat> textures(int seed) {
+  cv::RNG rng(seed);
   cv::Mat floor(240, 320, CV_8UC3), skin(240, 320, CV_8UC3);
   rng.fill(floor, cv::RNG::UNIFORM, cv::Scalar(90, 90, 90), cv::Scalar(130, 130, 130));
   rng.fill(skin, cv::RNG::UNIFORM, cv::Scalar(10, 20, 150), cv::Scalar(50, 60, 230));
   cv::GaussianBlur(skin, skin, {5, 5}, 1.2);
   cv::GaussianBlur(floor, floor, {5, 5}, 1.2);
+  return {floor, skin};
+}
+
+TEST(Cfof, FollowsAMovingTexturedPatchToUnderAPixel) {
+  const auto [floor, skin] = textures(3);
   const CfofParams params;
   cv::Point2d truth(100, 100);
   CfofFrame previous = CfofFrame::from_bgr(frame_with_disc(truth, floor, skin), cv::Mat(), params);
@@ -167,12 +173,7 @@ TEST(Cfof, FollowsAMovingTexturedPatchToUnderAPixel) {
 // motion it stays on the disc and resumes when it shows again; coasting on its decaying
 // velocity alone (no carry) it falls behind and cannot find its colour again.
 TEST(Cfof, HiddenPartCarriedWithTheBodyResumesOnIt) {
-  cv::RNG rng(5);
-  cv::Mat floor(240, 320, CV_8UC3), skin(240, 320, CV_8UC3);
-  rng.fill(floor, cv::RNG::UNIFORM, cv::Scalar(90, 90, 90), cv::Scalar(130, 130, 130));
-  rng.fill(skin, cv::RNG::UNIFORM, cv::Scalar(10, 20, 150), cv::Scalar(50, 60, 230));
-  cv::GaussianBlur(skin, skin, {5, 5}, 1.2);
-  cv::GaussianBlur(floor, floor, {5, 5}, 1.2);
+  const auto [floor, skin] = textures(5);
   const CfofParams params;
   const cv::Point2d step(4, 2);
   for (const bool carried : {true, false}) {
