@@ -78,7 +78,9 @@ void CameraTracker::track(const cv::Mat& bgr, const cv::Mat& silhouette,
                           const std::array<double, kEffectorCount>& depth,
                           const std::array<std::optional<cv::Point2d>, kEffectorCount>& root) {
   CfofFrame current = frame(bgr, silhouette);
-  // §3.3.1: of two overlapping ROIs (where they are expected), the farther one is hidden.
+  // §3.3.1: of two overlapping ROIs (where they are expected), the farther one is hidden -- by
+  // a nearer part that is seen: two predicted parts moving together must not keep each other
+  // hidden for ever.
   std::array<bool, kEffectorCount - 1> hidden{}, overlapping{};
   for (size_t i = 0; i < parts_.size(); ++i) {
     for (size_t j = i + 1; j < parts_.size(); ++j) {
@@ -89,17 +91,20 @@ void CameraTracker::track(const cv::Mat& bgr, const cv::Mat& silhouette,
       if (overlap < params_.overlap_fraction * std::min(ra.area(), rb.area())) continue;
       const double da = depth[i], db = depth[j];
       if (std::isnan(da) || std::isnan(db)) continue;
-      hidden[da > db ? i : j] = true;
+      const size_t far = da > db ? i : j, near = far == i ? j : i;
+      if (parts_[near].state() == CfofState::tracking) hidden[far] = true;
       overlapping[i] = overlapping[j] = true;
     }
   }
   const auto pelvis = pelvis_.track(silhouette);
+  cv::Point2d carry;
   if (pelvis) {
+    if (pelvis_seen_ && params_.carry_with_pelvis) carry = *pelvis - pelvis_position_;
     pelvis_position_ = *pelvis;
     pelvis_seen_ = true;
   }
   for (size_t i = 0; i < parts_.size(); ++i) {
-    parts_[i].track(previous_, current, hidden[i]);
+    parts_[i].track(previous_, current, hidden[i], carry);
     surface_[i].clear();
     for (const cv::Point2f& f : parts_[i].selection()) surface_[i].emplace_back(f);
     // Two overlapping parts may share one blob; neither is anchored on it.
@@ -107,8 +112,11 @@ void CameraTracker::track(const cv::Mat& bgr, const cv::Mat& silhouette,
         !pelvis_seen_) {
       continue;
     }
-    if (const auto end = far_end(static_cast<Effector>(i), current, silhouette, root[i])) {
-      parts_[i].shift(end->centre - parts_[i].centre());
+    const auto end = far_end(static_cast<Effector>(i), current, silhouette, root[i]);
+    const cv::Point2d shift = end ? end->centre - parts_[i].centre() : cv::Point2d();
+    if (end && std::hypot(shift.x, shift.y) <=
+                   params_.anchor_gate * params_.anchor_length[i] * person_px_) {
+      parts_[i].shift(shift);
       surface_[i] = end->pixels;
     }
   }

@@ -40,6 +40,13 @@ struct CameraTrackerParams {
   // one nearest the limb's root count as where the limb comes in.
   double anchor_root_tolerance = 0.05;
   std::array<double, kEffectorCount - 1> anchor_length = {0.13, 0.09, 0.09, 0.06, 0.06};
+  // An anchored end farther than this many part lengths (`anchor_length`) from where CFOF put
+  // the part is not this part's end: two limbs of one colour touch (crossed forearms, a hand on
+  // the face) and their blobs merged, whose far end belongs to the other limb.
+  double anchor_gate = 1.0;
+  // Parts that are not tracked (hidden, or lost) move with the pelvis' image motion
+  // (CfofTracker::track's `carry`); off: they coast on their own velocity alone.
+  bool carry_with_pelvis = true;
 };
 
 class CameraTracker {

@@ -230,28 +230,30 @@ void CfofTracker::shift(cv::Point2d delta) {
   roi_filter_.translate(delta);
 }
 
-void CfofTracker::coast(CfofState state) {
-  if (state_ == CfofState::tracking) coast_velocity_ = roi_filter_.velocity();
+void CfofTracker::coast(CfofState state, cv::Point2d carry) {
+  if (state_ == CfofState::tracking) coast_velocity_ = roi_filter_.velocity() - carry;
   if (state == CfofState::lost) coast_velocity_ = {};
-  centre_ += coast_velocity_;
+  centre_ += carry + coast_velocity_;
   coast_velocity_ *= params_.coast_velocity_decay;
   features_.clear();
   state_ = state;
 }
 
-void CfofTracker::track(const CfofFrame& previous, const CfofFrame& current, bool hidden) {
+void CfofTracker::track(const CfofFrame& previous, const CfofFrame& current, bool hidden,
+                        cv::Point2d carry) {
   const CfofState hidden_state = state_ == CfofState::lost ? CfofState::lost : CfofState::occluded;
   if (hidden) {
-    coast(hidden_state);
+    coast(hidden_state, carry);
     return;
   }
   const bool resume = state_ != CfofState::tracking || features_.empty();
   if (resume) {
     // Alg. 2 lines 2-5: search again once the ROI (where it is expected) shows enough colour.
-    const cv::Point2d expected = predicted_centre();
+    const cv::Point2d expected =
+        state_ == CfofState::tracking ? predicted_centre() : predicted_centre() + carry;
     if (coloured_pixels(current, roi_at(expected)) <
         params_.restart_color_fraction * initial_coloured_) {
-      coast(hidden_state);
+      coast(hidden_state, carry);
       return;
     }
     centre_ = expected;
@@ -265,18 +267,18 @@ void CfofTracker::track(const CfofFrame& previous, const CfofFrame& current, boo
     if (coloured_pixels(current, roi_at(centre_)) <
         params_.occlusion_color_fraction * initial_coloured_) {
       centre_ = before;
-      coast(CfofState::occluded);
+      coast(CfofState::occluded, carry);
       return;
     }
   }
   cmdf(current);
   if (features_.empty()) {
-    coast(CfofState::lost);
+    coast(CfofState::lost, carry);
     return;
   }
   centre_on_selection();
   if (resume) {
-    roi_filter_ = PointKalman(centre_, params_.kalman, 100.0, coast_velocity_);
+    roi_filter_ = PointKalman(centre_, params_.kalman, 100.0, coast_velocity_ + carry);
   } else {
     roi_filter_.predict();
     roi_filter_.correct(centre_);

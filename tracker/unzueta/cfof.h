@@ -67,7 +67,11 @@ class CfofTracker {
   void initialize(const CfofFrame& frame, cv::Rect2d roi);
   // Alg. 2 on the next frame. When `hidden` (another tracked part lies in front, §3.3.1) the
   // optical flow stops: the features are dropped and the ROI coasts on its Kalman filter.
-  void track(const CfofFrame& previous, const CfofFrame& current, bool hidden = false);
+  // `carry` is how far the body the part belongs to moved since the previous frame (e.g. the
+  // pelvis' image motion): an ROI that is not tracked moves with it, plus its own decaying
+  // velocity relative to it, so that a part hidden while the person walks stays on the person.
+  void track(const CfofFrame& previous, const CfofFrame& current, bool hidden = false,
+             cv::Point2d carry = {});
 
   cv::Point2d centre() const { return centre_; }
   cv::Rect2d roi() const;
@@ -94,7 +98,7 @@ class CfofTracker {
   void flow(const CfofFrame& previous, const CfofFrame& current);
   void cmdf(const CfofFrame& frame);
   void centre_on_selection();
-  void coast(CfofState state);
+  void coast(CfofState state, cv::Point2d carry);
   cv::Rect roi_at(cv::Point2d centre) const;
   Feature make_feature(cv::Point2f p) const;
 
@@ -103,7 +107,7 @@ class CfofTracker {
   cv::Size2d size_;
   cv::Point2d centre_;
   PointKalman roi_filter_{cv::Point2d()};
-  cv::Point2d coast_velocity_;
+  cv::Point2d coast_velocity_;  // relative to the carrying body's motion
   std::vector<Feature> features_;
   int initial_coloured_ = 0;
   CfofState state_ = CfofState::lost;

@@ -1,6 +1,7 @@
 // The building blocks of Unzueta's tracking from pixels against independent references: DLT
 // triangulation against OpenCV's cv::triangulatePoints and cv::projectPoints, the point Kalman
-// filter against the filter equations computed by hand, and CFOF following a textured patch.
+// filter against the filter equations computed by hand, and CFOF following a textured patch
+// (also while hidden, carried with the body's motion).
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -129,13 +130,19 @@ cv::Mat frame_with_disc(cv::Point2d centre, const cv::Mat& floor, const cv::Mat&
   return img;
 }
 
-TEST(Cfof, FollowsAMovingTexturedPatchToUnderAPixel) {
-  cv::RNG rng(3);
+// A grey textured floor and a red skin texture, 320x240.
+std::pair<cv::Mat, cv::Mat> textures(int seed) {
+  cv::RNG rng(seed);
   cv::Mat floor(240, 320, CV_8UC3), skin(240, 320, CV_8UC3);
   rng.fill(floor, cv::RNG::UNIFORM, cv::Scalar(90, 90, 90), cv::Scalar(130, 130, 130));
   rng.fill(skin, cv::RNG::UNIFORM, cv::Scalar(10, 20, 150), cv::Scalar(50, 60, 230));
   cv::GaussianBlur(skin, skin, {5, 5}, 1.2);
   cv::GaussianBlur(floor, floor, {5, 5}, 1.2);
+  return {floor, skin};
+}
+
+TEST(Cfof, FollowsAMovingTexturedPatchToUnderAPixel) {
+  const auto [floor, skin] = textures(3);
   const CfofParams params;
   cv::Point2d truth(100, 100);
   CfofFrame previous = CfofFrame::from_bgr(frame_with_disc(truth, floor, skin), cv::Mat(), params);
@@ -160,6 +167,41 @@ TEST(Cfof, FollowsAMovingTexturedPatchToUnderAPixel) {
   }
   std::nth_element(step_error.begin(), step_error.begin() + 10, step_error.end());
   EXPECT_LT(step_error[10], 1.0);
+}
+
+// A part hidden while its body moves (CfofTracker::track's `carry`): carried with the body's
+// motion it stays on the disc and resumes when it shows again; coasting on its decaying
+// velocity alone (no carry) it falls behind and cannot find its colour again.
+TEST(Cfof, HiddenPartCarriedWithTheBodyResumesOnIt) {
+  const auto [floor, skin] = textures(5);
+  const CfofParams params;
+  const cv::Point2d step(4, 2);
+  for (const bool carried : {true, false}) {
+    cv::Point2d truth(60, 60);
+    CfofFrame previous =
+        CfofFrame::from_bgr(frame_with_disc(truth, floor, skin), cv::Mat(), params);
+    CfofTracker t(params);
+    t.initialize(previous, cv::Rect2d(truth.x - 20, truth.y - 20, 40, 40));
+    for (int f = 1; f <= 30; ++f) {
+      truth += step;
+      CfofFrame current =
+          CfofFrame::from_bgr(frame_with_disc(truth, floor, skin), cv::Mat(), params);
+      const bool hidden = f > 5 && f <= 20;
+      t.track(previous, current, hidden, carried ? step : cv::Point2d());
+      if (hidden) {
+        EXPECT_EQ(t.state(), CfofState::occluded) << "frame " << f;
+      }
+      previous = std::move(current);
+    }
+    const cv::Point2d err = t.centre() - truth;
+    // On the disc (radius 18 px) or far off it.
+    if (carried) {
+      EXPECT_EQ(t.state(), CfofState::tracking);
+      EXPECT_LT(std::hypot(err.x, err.y), 18.0);
+    } else {
+      EXPECT_GT(std::hypot(err.x, err.y), 40.0);
+    }
+  }
 }
 
 }  // namespace
