@@ -73,6 +73,7 @@ TrackSummary run_moschini_timed(const fs::path& dataset, const TrackBenchOptions
 // Any other family: its whole run into a scratch track folder that is never committed.
 TrackSummary run_family(const fs::path& dataset, const TrackBenchOptions& o) {
   TrackOptions options = o.track;
+  options.max_frames = o.frames;
   options.quiet = true;
   const TrackerFamily& family = tracker_family(options.method);
   const fs::path scratch =

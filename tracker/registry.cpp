@@ -19,6 +19,7 @@ TrackSummary run_moschini_family(const fs::path& dataset, const fs::path& out,
   m.silhouettes = o.silhouettes;
   m.inspect = o.inspect;
   m.oracle = o.oracle;
+  m.max_frames = o.max_frames;
   m.quiet = o.quiet;
   return track_moschini(dataset, out, m);
 }
@@ -28,6 +29,7 @@ TrackSummary run_sik_family(const fs::path& dataset, const fs::path& out, const 
   s.init = o.init;
   s.silhouettes = o.silhouettes;
   s.seed = o.seed;
+  s.max_frames = o.max_frames;
   s.quiet = o.quiet;
   return track_sik(dataset, out, s);
 }
@@ -40,6 +42,7 @@ TrackSummary run_monocular_family(const fs::path& dataset, const fs::path& out,
   m.tracker.filter.seed = o.seed;
   m.inspect = o.inspect;
   m.oracle = o.oracle;
+  m.max_frames = o.max_frames;
   m.quiet = o.quiet;
   return track_monocular(dataset, out, m);
 }

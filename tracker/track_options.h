@@ -33,6 +33,7 @@ struct TrackOptions {
   // Every frame starts from its ground-truth pose (moschini, monocular): a diagnostic of the
   // error the body model and the cues leave without the search's.
   bool oracle = false;
+  int max_frames = -1;  // the first frames only; < 0: every frame
   bool quiet = false;
   // Formats the track's motion is also written in (TRACK/motion.bvh, motion.x3d).
   std::vector<MotionExport> exports;

@@ -2,6 +2,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/joint_track.h"
 #include "tests/support/temp_dir.h"
 #include "tests/tracker/capsule_dataset.h"
 #include "tracker/common/track_folder.h"
@@ -82,6 +83,29 @@ TEST(TrackFolder, RefusesAFolderThatIsNotATrack) {
   EXPECT_EQ(read_text(dir / "mine" / "notes.txt"), "keep me\n");
   fs::create_directories(dir / "empty");
   EXPECT_NO_THROW(TrackFolder(dir / "empty"));
+}
+
+// --frames reaches every family: each tracks the first N frames and writes those only.
+TEST(Registry, EveryFamilyTracksTheFirstFramesOnly) {
+  TempDir dir;
+  testing::write_capsule_dataset(dir / "ds", {.frames = 4, .cameras = 2});
+  for (const char* method : {"moschini", "sik", "monocular"}) {
+    const fs::path out = dir / method;
+    std::string log;
+    ASSERT_EQ(run_simcap("track " + (dir / "ds").string() + " -o " + out.string() + " --method " +
+                             method + " --frames 2 --quiet",
+                         &log),
+              0)
+        << method << ": " << log;
+    EXPECT_EQ(read_joint_track(out / "joints3d.csv").frames, (std::vector<int>{0, 1})) << method;
+  }
+  std::string log;
+  EXPECT_NE(
+      run_simcap("track " + (dir / "ds").string() + " -o " + (dir / "t").string() + " --frames 0",
+                 &log),
+      0);
+  EXPECT_NE(log.find("--frames"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir / "t"));
 }
 
 // A run that fails after it started writing leaves no track folder behind.

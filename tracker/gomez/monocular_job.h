@@ -27,6 +27,7 @@ struct MonocularOptions {
   std::vector<int> inspect;
   // Every frame's search starts from its ground-truth pose (gt/joints3d.csv fitted by the body).
   bool oracle = false;
+  int max_frames = -1;  // the first frames only; < 0: every frame
   bool quiet = false;
 };
 

@@ -226,7 +226,7 @@ TrackSummary track_moschini(const fs::path& dataset, const fs::path& out,
   std::optional<BodySurface> surface;
   char buf[256];
   const TrackSummary run = run_moschini(
-      dataset, options, -1,
+      dataset, options, options.max_frames,
       [&](const Dataset& ds, const Observation& obs, const TrackStep& step,
           const MoschiniTracker& tracker) {
         if (!dims) dims = tracker.model().dimensions(), surface = tracker.surface();

@@ -51,6 +51,7 @@ struct MoschiniOptions {
   std::filesystem::path limits;
   // Frames to lay open in TRACK/diagnostics/inspect/FRAME/ (inspection.h).
   std::vector<int> inspect;
+  int max_frames = -1;  // the first frames only; < 0: every frame
   bool quiet = false;
 };
 

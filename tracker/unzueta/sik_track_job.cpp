@@ -130,10 +130,13 @@ TrackSummary track_dataset_sik(const std::filesystem::path& dataset,
     return p;
   };
 
-  Progress progress("sik", static_cast<long>(truth.frames.size()), options.quiet);
+  const size_t frames = options.max_frames < 0 ? truth.frames.size()
+                                               : std::min(truth.frames.size(),
+                                                          static_cast<size_t>(options.max_frames));
+  Progress progress("sik", static_cast<long>(frames), options.quiet);
   std::vector<Eigen::Quaterniond> rotation;
   std::vector<Eigen::Vector3d> position;
-  for (size_t f = 0; f < truth.frames.size(); ++f) {
+  for (size_t f = 0; f < frames; ++f) {
     const auto& p = truth.positions[f];
     progress.advance();
     const std::array<int, 6> used = {pelvis, head, wrist[0], wrist[1], ankle[0], ankle[1]};

@@ -40,7 +40,7 @@ struct SikTrackOptions {
   int camera = 0;
   tracker::CameraTrackerParams tracking;
   SikPelvisWeights pelvis_weights;
-  int max_frames = -1;  // from pixels: < 0 tracks every frame
+  int max_frames = -1;  // the first frames only; < 0: every frame
   bool quiet = false;
 };
 
