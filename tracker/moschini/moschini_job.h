@@ -52,6 +52,8 @@ struct MoschiniOptions {
   // Frames to lay open in TRACK/diagnostics/inspect/FRAME/ (inspection.h).
   std::vector<int> inspect;
   bool quiet = false;
+  // The person to track (tracker/common/dataset.h); empty: the first actor.
+  std::string actor;
 };
 
 // Tracks every frame of `dataset` and writes OUT/joints3d.csv (HE15, H-Anim names) and
