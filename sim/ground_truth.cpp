@@ -35,11 +35,17 @@ Visibility classify(const CameraRays& rays, const EmbreeScene& scene, int actor,
   rtcIntersect1(scene.handle(), &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return Visibility::visible;
   const double hit_depth = static_cast<double>(rh.ray.tfar) * rays.z_scale(x, y);
-  if (hit_depth >= depth - kVisibilityTolerance) return Visibility::visible;
   HitRecord hit;
   hit.geom_id = rh.hit.geomID;
   hit.inst_id = rh.hit.instID[0];
-  return scene.actor_of(hit) == actor ? Visibility::self_occluded : Visibility::scene_occluded;
+  const int hit_actor = scene.actor_of(hit);
+  // The tolerance is for the joint's own flesh in front of its centre: another person's surface
+  // anywhere in front of the joint hides it (the pixel is that person's in the mask).
+  if (hit_actor >= 0 && hit_actor != actor) {
+    return hit_depth < depth ? Visibility::scene_occluded : Visibility::visible;
+  }
+  if (hit_depth >= depth - kVisibilityTolerance) return Visibility::visible;
+  return hit_actor == actor ? Visibility::self_occluded : Visibility::scene_occluded;
 }
 
 // A point of `actor` as the camera of `rays` sees it.

@@ -54,8 +54,10 @@ std::vector<int> truth_joints(const Skeleton& skeleton);
 // centre of the pixel the joint projects into (the very ray that gave that pixel's depth, mask
 // and part label, so the tables always agree with the images) is traced; if it meets a surface
 // more than kVisibilityTolerance (z-depth) in front of the joint, the joint is self_occluded when
-// that surface is the joint's own actor, scene_occluded when it is the room, an occluder or
-// another actor; otherwise it is visible. Joints behind the camera or projecting outside
+// that surface is the joint's own actor, scene_occluded when it is the room or an occluder;
+// another actor's surface in front of the joint at all makes it scene_occluded (the tolerance
+// is for the joint's own flesh, and the pixel is the other actor's in the mask); otherwise it is
+// visible. Joints behind the camera or projecting outside
 // [-0.5, width - 0.5) x [-0.5, height - 0.5) are out_of_frame.
 FrameTruth compute_frame_truth(int frame, const std::vector<PosedActor>& actors,
                                const std::vector<CameraRays>& cameras, const EmbreeScene& scene);

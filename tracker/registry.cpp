@@ -4,6 +4,8 @@
 
 #include <array>
 
+#include "core/atomic_file.h"
+#include "core/dataset_actors.h"
 #include "core/error.h"
 #include "tracker/common/track_folder.h"
 
@@ -21,6 +23,7 @@ TrackSummary run_moschini_family(const fs::path& dataset, const fs::path& out,
   m.oracle = o.oracle;
   m.max_frames = o.max_frames;
   m.quiet = o.quiet;
+  m.actor = o.actor;
   return track_moschini(dataset, out, m);
 }
 
@@ -58,7 +61,7 @@ constexpr std::array kFamilies{
                     n.colour = o.silhouettes != SilhouetteMethod::gt;
                     return n;
                   },
-                  run_moschini_family},
+                  true, run_moschini_family},
     TrackerFamily{TrackMethod::sik,
                   "sequential inverse kinematics on end-effectors, from the ground truth or "
                   "tracked in the images (Unzueta 2009)",
@@ -73,7 +76,7 @@ constexpr std::array kFamilies{
                     n.min_cameras = e == EffectorSource::multiview ? 2 : 1;
                     return n;
                   },
-                  run_sik_family},
+                  false, run_sik_family},
     TrackerFamily{TrackMethod::monocular,
                   "one camera: render-and-compare particle filter (Gomez Jauregui 2011)",
                   [](const TrackOptions& o) {
@@ -84,7 +87,7 @@ constexpr std::array kFamilies{
                     n.ground_truth = o.init == InitMethod::gt || o.oracle;
                     return n;
                   },
-                  run_monocular_family},
+                  false, run_monocular_family},
 };
 
 std::string method_name(TrackMethod m) {
@@ -134,8 +137,14 @@ TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
   TrackOptions options = given;
   options.method = resolve_method(given.method, Dataset(dataset));
   const TrackerFamily& family = tracker_family(options.method);
+  const Dataset chosen(dataset, options.actor);
+  if (chosen.actor() != 0 && !family.any_actor) {
+    throw Error("--actor " + options.actor + ": --method " + method_name(options.method) +
+                " tracks only the first actor (" + chosen.actors().front() +
+                "); --method moschini tracks any");
+  }
   {
-    const Dataset ds(dataset);
+    const Dataset& ds = chosen;
     const std::string missing = missing_for(family.needs(options), ds);
     if (!missing.empty()) {
       std::string others;
@@ -154,7 +163,10 @@ TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
   }
   TrackFolder folder(out);
   TrackSummary summary = family.run(dataset, folder.path(), options);
-  export_track_motion(folder.path(), Dataset(dataset).fps(), options.exports);
+  export_track_motion(folder.path(), chosen.fps(), options.exports);
+  if (chosen.actors().size() > 1) {
+    write_text_atomic(folder.path() / kTrackActorFile, chosen.actors()[chosen.actor()] + "\n");
+  }
   folder.commit();
   summary.track = out;
   return summary;

@@ -25,6 +25,8 @@ struct TrackerFamily {
   TrackMethod method;
   std::string_view summary;  // one line, for --help and for refusals
   DatasetNeeds (*needs)(const TrackOptions&);
+  // Whether it tracks any actor of a several-person dataset (--actor), not only the first.
+  bool any_actor;
   TrackSummary (*run)(const std::filesystem::path& dataset, const std::filesystem::path& out,
                       const TrackOptions&);
 };

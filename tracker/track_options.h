@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/name_table.h"
@@ -26,6 +27,9 @@ struct TrackOptions {
   TrackMethod method = TrackMethod::automatic;
   // Options every family shares; the registry hands them to the family that runs.
   InitMethod init = InitMethod::gt;
+  // The person to track, by scene.yaml name; empty: the first actor. The track records it in
+  // TRACK/actor.txt when the dataset has several actors (core/dataset_actors.h).
+  std::string actor;
   SilhouetteMethod silhouettes =
       SilhouetteMethod::gt;  // moschini, monocular; sik from pixels (pelvis)
   std::uint64_t seed = 1;    // sik's noise, monocular's particles

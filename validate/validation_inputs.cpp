@@ -6,6 +6,7 @@
 
 #include "core/angle_track.h"
 #include "core/calibration.h"
+#include "core/dataset_actors.h"
 #include "core/error.h"
 #include "core/joint_track.h"
 #include "models/humanoid.h"
@@ -114,7 +115,9 @@ Eigen::Matrix3Xd frame_matrix(const JointTrack& t, size_t f, const std::vector<s
   return m;
 }
 
-void add_visibility(const fs::path& file, const std::vector<Camera>& cameras, EvaluationInput& in) {
+// `prefix`: how the table names the tracked actor's joints (core/dataset_actors.h).
+void add_visibility(const fs::path& file, const std::vector<Camera>& cameras,
+                    const std::string& prefix, EvaluationInput& in) {
   std::vector<std::string> names;
   for (const auto& c : cameras) names.push_back(c.name);
   const VisibilityTable table = read_visibility_table(file, names);
@@ -128,9 +131,9 @@ void add_visibility(const fs::path& file, const std::vector<Camera>& cameras, Ev
     }
     auto& views = in.views.emplace_back();
     for (const auto& joint : in.joints) {
-      const int j = table.joint_index(joint);
+      const int j = table.joint_index(prefix + joint);
       if (j < 0) {
-        throw_input_error(file, 0, "joint", "no rows for joint '" + joint + "'");
+        throw_input_error(file, 0, "joint", "no rows for joint '" + prefix + joint + "'");
       }
       JointSight v;
       for (size_t c = 0; c < cameras.size(); ++c) {
@@ -148,7 +151,7 @@ void add_visibility(const fs::path& file, const std::vector<Camera>& cameras, Ev
             break;
           case VisibilityLabel::missing:
             throw_input_error(file, 0, "camera",
-                              "no row for joint '" + joint + "' in camera " + names[c] +
+                              "no row for joint '" + prefix + joint + "' in camera " + names[c] +
                                   " at frame " + std::to_string(frame));
         }
       }
@@ -157,13 +160,14 @@ void add_visibility(const fs::path& file, const std::vector<Camera>& cameras, Ev
   }
 }
 
-void add_angles(const fs::path& truth_file, const fs::path& est_file, EvaluationInput& in) {
+void add_angles(const fs::path& truth_file, const fs::path& est_file, const std::string& prefix,
+                EvaluationInput& in) {
   require_file(truth_file,
                "the ground-truth joint rotations to compare " + est_file.string() + " with");
   const AngleTrack truth = read_angle_track(truth_file);
   const AngleTrack est = read_angle_track(est_file);
   for (const auto& name : est.joints) {
-    if (truth.joint_index(name) >= 0) in.angle_joints.push_back(name);
+    if (truth.joint_index(prefix + name) >= 0) in.angle_joints.push_back(name);
   }
   if (in.angle_joints.empty()) {
     throw_input_error(est_file, 0, "joint", "no joint in common with " + truth_file.string());
@@ -184,7 +188,7 @@ void add_angles(const fs::path& truth_file, const fs::path& est_file, Evaluation
     auto& t_out = in.truth_rotations.emplace_back();
     auto& e_out = in.estimate_rotations.emplace_back();
     for (const auto& name : in.angle_joints) {
-      const Eigen::Quaterniond& qt = tr[truth.joint_index(name)];
+      const Eigen::Quaterniond& qt = tr[truth.joint_index(prefix + name)];
       const Eigen::Quaterniond& qe = er[est.joint_index(name)];
       for (const auto& [q, file] : {std::pair{&qt, truth_file}, std::pair{&qe, est_file}}) {
         if (!q->coeffs().allFinite()) {
@@ -221,7 +225,12 @@ ValidationInputs load_validation_inputs(const fs::path& dataset, const fs::path&
 
   const fs::path truth_file = dataset / "gt" / "joints3d.csv";
   const fs::path est_file = track / "joints3d.csv";
-  const JointTrack truth = read_joint_track(truth_file);
+  // The tracked actor (TRACK/actor.txt; the first without it), under its own joint names.
+  const std::vector<std::string> actors = read_dataset_actors(dataset);
+  const int actor =
+      find_actor(actors, read_track_actor(track), (track / kTrackActorFile).string() + ": actor");
+  const std::string prefix = actor_joint_prefix(actors, actor);
+  const JointTrack truth = actor_joints(read_joint_track(truth_file), actors, actor);
   const JointTrack est = read_joint_track(est_file);
   if (truth.frames.empty()) throw_input_error(truth_file, 0, "", "no rows; expected joints");
   if (est.frames.empty()) throw_input_error(est_file, 0, "", "no rows; expected joints");
@@ -234,10 +243,10 @@ ValidationInputs load_validation_inputs(const fs::path& dataset, const fs::path&
     in.truth.push_back(frame_matrix(truth, f, in.joints, truth_file));
     in.estimate.push_back(frame_matrix(est, f, in.joints, est_file));
   }
-  add_visibility(dataset / "gt" / "joints2d.csv", out.cameras, in);
+  add_visibility(dataset / "gt" / "joints2d.csv", out.cameras, prefix, in);
   if (out.cameras.size() == 1) in.camera_centre = out.cameras.front().centre();
   if (fs::exists(track / "angles.csv")) {
-    add_angles(dataset / "gt" / "angles.csv", track / "angles.csv", in);
+    add_angles(dataset / "gt" / "angles.csv", track / "angles.csv", prefix, in);
   }
   return out;
 }

@@ -12,8 +12,9 @@ namespace simcap::cli {
 namespace {
 
 // Sweep keys and the options they set (sweep files name the voxel and noise with their unit).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 22> kSweepKeys{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 23> kSweepKeys{{
     {"method", "--method"},
+    {"actor", "--actor"},
     {"silhouettes", "--silhouettes"},
     {"init", "--init"},
     {"appearance", "--appearance"},
@@ -89,6 +90,10 @@ std::string method_help() {
 void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope scope) {
   using namespace tracker;
   add_choice(cmd, "--method", o.method, kTrackMethods, method_help());
+  cmd->add_option("--actor", o.actor,
+                  "The person to track in a dataset of several (scene.yaml's actor name; "
+                  "default: the first actor); moschini tracks any, sik and monocular the first. "
+                  "The track records it in actor.txt and validate scores that actor");
   add_choice(cmd, "--silhouettes", o.silhouettes, kSilhouetteMethods,
              "Silhouettes (moschini, monocular; sik from pixels, for the pelvis): gt (the "
              "dataset's masks), bgsub (Gaussian background model), mog2 (OpenCV MOG2)");
@@ -118,7 +123,7 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
   cmd->add_option("--limits", o.moschini.limits,
                   "moschini: joint limits of the urdf joint set from this URDF (an edited copy of "
                   "models/assets/humanoid_limits.urdf); default: the dataset scene's "
-                  "actors[0].limits, else that file")
+                  "limits of the tracked actor, else that file")
       ->check(CLI::ExistingFile);
   cmd->add_flag("--oracle", o.oracle,
                 "moschini, monocular: start every frame from its ground-truth pose (a diagnostic: "
@@ -249,7 +254,8 @@ std::string track_options_text(const tracker::TrackOptions& o) {
                     heuristics_text(m.filter)
               : std::string("simplex"));
   }
-  return s + ", init " + std::string(name_of(kInitMethods, o.init));
+  s += ", init " + std::string(name_of(kInitMethods, o.init));
+  return o.actor.empty() ? s : s + ", actor " + o.actor;
 }
 
 }  // namespace simcap::cli

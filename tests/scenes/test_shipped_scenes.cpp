@@ -20,8 +20,10 @@ namespace {
 
 using simcap::testing::TempDir;
 
-const std::vector<std::string> kShipped = {"studio4", "studio8",  "occluders",         "monocular",
-                                           "x3d_joe", "gestures", "monocular_gestures"};
+const std::vector<std::string> kShipped = {
+    "studio4",     "studio8",  "occluders",          "monocular",
+    "x3d_joe",     "gestures", "monocular_gestures", "two_people",
+    "three_people"};
 
 // The actor's joint positions in the room for every frame at the scene's frame rate.
 std::vector<std::vector<Eigen::Vector3d>> world_joints(const Scene& scene, const Actor& actor,
@@ -67,7 +69,7 @@ TEST(ShippedScenes, AllLoadAndRoundTrip) {
     SCOPED_TRACE(name);
     const Scene s = load_scene(shipped_scene_path(name));
     EXPECT_FALSE(s.cameras.empty());
-    ASSERT_EQ(s.actors.size(), 1u);
+    ASSERT_EQ(s.actors.size(), name == "two_people" ? 2u : name == "three_people" ? 3u : 1u);
     TempDir dir;
     const Scene back = load_scene(testing::write_scene(dir.path(), scene_to_yaml(s)));
     testing::expect_scenes_equal(s, back);

@@ -154,6 +154,27 @@ actors:
   EXPECT_EQ(values, (std::set<int>{0, 1, 2}));
 }
 
+TEST(RenderDataset, TwoPeopleCrossingHideEachOtherAndTheTablesSaySo) {
+  TempDir dir;
+  // Frames 50-53 of scenes/two_people.yaml: actor1 walks between cam00 and actor0.
+  ASSERT_EQ(render(scene_path("two_people"), dir / "d", "--set render.first_frame=170"), 0);
+  check_consistency(dir / "d");
+  // Every joint of actor0 whose pixel shows actor1 in front of it (more than the visibility
+  // tolerance nearer, by the depth map) is labelled scene_occluded, and there are such joints.
+  int hidden = 0;
+  for (const Joint2d& r : read_joints2d(dir / "d" / "gt" / "joints2d.csv")) {
+    if (r.joint.find('/') != std::string::npos || r.visibility == "out_of_frame") continue;
+    const int u = static_cast<int>(std::lround(r.u)), v = static_cast<int>(std::lround(r.v));
+    const cv::Mat mask = read_image(image_file(dir / "d", r.camera, "mask", r.frame));
+    if (mask.at<std::uint8_t>(v, u) != 2) continue;
+    const cv::Mat depth = read_image(image_file(dir / "d", r.camera, "depth", r.frame));
+    if (depth.at<float>(v, u) >= r.depth - 0.15) continue;
+    EXPECT_EQ(r.visibility, "scene_occluded") << r.camera << " " << r.frame << " " << r.joint;
+    ++hidden;
+  }
+  EXPECT_GT(hidden, 10);
+}
+
 TEST(RenderDataset, NormalsAreUnitVectorsFacingTheCamera) {
   TempDir dir;
   ASSERT_EQ(render(scene_path("studio4"), dir / "d", "--set render.normals=true"), 0);

@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "core/calibration.h"
+#include "core/dataset_actors.h"
 #include "core/error.h"
 #include "tracker/common/png_decoder.h"
 
@@ -35,7 +36,7 @@ std::string frame_file(int frame) {
 
 }  // namespace
 
-Dataset::Dataset(fs::path root) : root_(std::move(root)) {
+Dataset::Dataset(fs::path root, const std::string& actor) : root_(std::move(root)) {
   if (!fs::is_directory(root_)) {
     throw Error(root_.string() + ": not a folder (expected a dataset written by simcap render)");
   }
@@ -55,6 +56,8 @@ Dataset::Dataset(fs::path root) : root_(std::move(root)) {
                   cam.name + "')");
     }
   }
+  actors_ = read_dataset_actors(root_);
+  actor_ = find_actor(actors_, actor, "--actor");
 }
 
 std::vector<int> Dataset::frames(const std::string& kind) const {
@@ -113,9 +116,16 @@ cv::Mat Dataset::mask(int camera, int frame) const {
   const fs::path path = image_path(camera, "mask", frame);
   cv::Mat m = read(path, camera, cv::IMREAD_UNCHANGED);
   if (m.channels() != 1) throw Error(path.string() + ": a mask must have one channel");
-  // Multi-actor masks hold actor indices; any actor counts as foreground.
   if (m.depth() != CV_8U) m = m != 0;
+  // Multi-actor masks hold each pixel's actor index + 1: the others are background here.
+  if (actors_.size() > 1) m = m == actor_mask_label(actors_, actor_);
   return m;
+}
+
+cv::Mat Dataset::others(int camera, int frame) const {
+  if (actors_.size() <= 1) return {};
+  const cv::Mat m = read(image_path(camera, "mask", frame), camera, cv::IMREAD_UNCHANGED);
+  return (m != 0) & (m != actor_mask_label(actors_, actor_));
 }
 
 cv::Mat Dataset::rgb(int camera, int frame) const {
@@ -134,7 +144,7 @@ JointTrack Dataset::ground_truth(const std::string& needed_by) const {
   const fs::path path = ground_truth_path();
   if (!fs::is_regular_file(path))
     throw Error(path.string() + ": missing (needed by " + needed_by + ")");
-  return read_joint_track(path);
+  return actor_joints(read_joint_track(path), actors_, actor_);
 }
 
 std::optional<Eigen::AlignedBox3d> Dataset::room() const {
@@ -168,12 +178,15 @@ std::optional<std::string> Dataset::actor_limits() const {
   if (!fs::is_regular_file(path)) return std::nullopt;
   try {
     const YAML::Node actors = YAML::LoadFile(path.string())["actors"];
-    if (!actors || !actors.IsSequence() || actors.size() == 0) return std::nullopt;
-    const YAML::Node limits = actors[0]["limits"];
+    if (!actors || !actors.IsSequence() || static_cast<int>(actors.size()) <= actor_) {
+      return std::nullopt;
+    }
+    const YAML::Node limits = actors[actor_]["limits"];
     if (!limits) return std::nullopt;
     return limits.as<std::string>();
   } catch (const YAML::Exception& e) {
-    throw_input_error(path, e.mark.line + 1, "actors[0].limits", e.msg);
+    throw_input_error(path, e.mark.line + 1, "actors[" + std::to_string(actor_) + "].limits",
+                      e.msg);
   }
 }
 

@@ -21,6 +21,8 @@ struct SilhouetteRay {
   Eigen::Vector3d direction;             // unit, world
   std::array<std::uint8_t, 3> colour{};  // the pixel's colour, when the frame's were read
   std::uint16_t parts = kAllParts;       // the sticks it may meet (bit s = Segment s)
+  int camera = -1;                       // the camera and pixel it goes through
+  int u = 0, v = 0;
 };
 
 struct IcpTargets {

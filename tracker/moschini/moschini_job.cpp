@@ -59,7 +59,7 @@ constexpr int kStartFrames = 5;
 
 TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& options,
                           int max_frames, const MoschiniSink& sink) {
-  const Dataset ds(dataset_path);
+  const Dataset ds(dataset_path, options.actor);
   const SilhouetteMethod method = options.silhouettes;
   PerceptionOptions popt;
   popt.hull.voxel_m = options.voxel_m;
@@ -105,6 +105,9 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
   topt.use_filter = options.filter == MotionFilter::ekf;
   topt.traversal = options.traversal;
   std::optional<MoschiniTracker> tracker;
+  // Where the tracked body was last: the gate keeps that person's part of the silhouettes
+  // when someone else is in view too (person_gate.h).
+  std::optional<PlacedSurface> last_body;
   // Where scene objects hide the person, learned as tracking goes (occlusion_map.h).
   std::optional<OcclusionMap> occlusion;
   if (options.occlusion) {
@@ -123,6 +126,7 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
     const StickModel plain(dims, topt.joints, topt.urdf_limits);
     const StickPose start = pose_from_joints(plain, joints, source);
     Observation first = perception.observe(frames.front());
+    perception.isolate(first, place(typical_surface(dims), plain.geometry(start)));
     if (occlusion) {
       // The true pose tells at once which parts the first frame hides from a camera.
       occlusion->observe(place(typical_surface(dims), plain.geometry(start)), first.silhouettes);
@@ -134,6 +138,7 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
     if (popt.colours) perception.set_appearance({plain, surface, start, first.rays});
     tracker.emplace(dims, surface, topt);
     tracker->start(start);
+    last_body = place(surface, plain.geometry(start));
   } else {
     // Assumption: in the first frames the person stands upright on the floor (auto_start.h).
     std::vector<Observation> first;
@@ -153,6 +158,7 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
     if (popt.colours) perception.set_appearance({model, surface, start.pose, first.front().rays});
     tracker.emplace(start.dims, surface, topt);
     tracker->start(start.pose);
+    last_body = place(surface, model.geometry(start.pose));
   }
 
   // Frames are observed in parallel; OpenCV's own worker threads inside each would only compete
@@ -189,13 +195,11 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
                      tracker->start(pose_from_joints(
                          tracker->model(), joints_at(*truth, obs->frame, source), source));
                    }
+                   perception.isolate(*obs, *last_body);
                    if (occlusion) perception.widen(*obs, *occlusion);
                    const TrackStep step = tracker->step(*obs);
-                   if (occlusion) {
-                     occlusion->observe(
-                         place(tracker->surface(), tracker->model().geometry(step.pose)),
-                         obs->silhouettes);
-                   }
+                   last_body = place(tracker->surface(), tracker->model().geometry(step.pose));
+                   if (occlusion) occlusion->observe(*last_body, obs->silhouettes);
                    sink(ds, *obs, step, *tracker);
                    progress.advance();
                  }));
@@ -219,7 +223,8 @@ TrackSummary track_moschini(const fs::path& dataset, const fs::path& out,
   CsvWriter centerline(diag / "centerline.csv", {"frame", "axis", "x", "y", "z", "voxels"});
   CsvWriter timings(diag / "timings.csv",
                     {"frame", "silhouettes_ms", "hull_ms", "centerline_ms", "icp_ms", "filter_ms",
-                     "voxels", "points", "icp_residual_mm", "inlier_fraction", "outside_fraction"});
+                     "voxels", "points", "icp_residual_mm", "inlier_fraction", "outside_fraction",
+                     "hull_components", "dropped_voxels"});
   CsvWriter reinit(diag / "reinitializations.csv", {"frame", "reason"});
   std::optional<CsvWriter> iou;
   std::optional<BodyDimensions> dims;
@@ -237,11 +242,11 @@ TrackSummary track_moschini(const fs::path& dataset, const fs::path& out,
                         p.position.x(), p.position.y(), p.position.z(), p.voxels);
           centerline.out() << buf;
         }
-        std::snprintf(buf, sizeof buf, "%d,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%zu,%.1f,%.3f,%.3f\n",
+        std::snprintf(buf, sizeof buf, "%d,%.3f,%.3f,%.3f,%.3f,%.3f,%d,%zu,%.1f,%.3f,%.3f,%d,%d\n",
                       obs.frame, obs.silhouettes_ms, obs.hull_ms, obs.centerline_ms, step.icp_ms,
                       step.filter_ms, obs.hull.count, obs.points.size(),
                       step.icp.mean_distance_m * 1000, step.icp.inlier_fraction,
-                      step.outside_fraction);
+                      step.outside_fraction, obs.gate.components, obs.gate.dropped_voxels);
         timings.out() << buf;
         if (step.reinitialized) reinit.out() << obs.frame << "," << step.reason << "\n";
         if (std::find(options.inspect.begin(), options.inspect.end(), obs.frame) !=

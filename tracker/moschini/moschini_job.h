@@ -53,6 +53,8 @@ struct MoschiniOptions {
   std::vector<int> inspect;
   int max_frames = -1;  // the first frames only; < 0: every frame
   bool quiet = false;
+  // The person to track (tracker/common/dataset.h); empty: the first actor.
+  std::string actor;
 };
 
 // Tracks every frame of `dataset` and writes OUT/joints3d.csv (HE15, H-Anim names) and

@@ -18,7 +18,8 @@ Perception::Perception(const Dataset& dataset, SilhouetteMethod method,
     : dataset_(&dataset),
       options_(options),
       silhouettes_(dataset, method, options.silhouettes),
-      hull_(dataset.cameras(), options.hull) {
+      hull_(dataset.cameras(), options.hull),
+      gate_(dataset.cameras(), options.gate) {
   const int stride = options_.ray_stride;
   if (stride <= 0) return;
   for (const Camera& cam : dataset.cameras()) {
@@ -36,11 +37,14 @@ Observation Perception::observe(int frame, bool compare_masks) const {
   Observation obs;
   obs.frame = frame;
   const int nc = dataset_->camera_count();
-  std::vector<cv::Mat> silhouettes(nc), colours(nc);
+  std::vector<cv::Mat> silhouettes(nc), colours(nc), cover(nc);
   if (compare_masks) obs.silhouette_iou.assign(nc, 0.0);
   auto t = Clock::now();
   tbb::parallel_for(0, nc, [&](int c) {
     silhouettes[c] = silhouettes_.extract(c, frame, options_.colours ? &colours[c] : nullptr);
+    if (silhouettes_.method() == SilhouetteMethod::gt && dataset_->actors().size() > 1) {
+      cover[c] = dataset_->others(c, frame);
+    }
     if (compare_masks)
       obs.silhouette_iou[c] = silhouette_iou(silhouettes[c], dataset_->mask(c, frame));
   });
@@ -56,6 +60,9 @@ Observation Perception::observe(int frame, bool compare_masks) const {
         if (!row[u]) continue;
         SilhouetteRay& ray =
             obs.rays.emplace_back(origin, ray_directions_[c][i].cast<double>().normalized());
+        ray.camera = c;
+        ray.u = u;
+        ray.v = v;
         if (rgb) {
           ray.colour = {rgb[u][0], rgb[u][1], rgb[u][2]};
           ray.parts = appearance_.parts(ray.colour);
@@ -65,13 +72,21 @@ Observation Perception::observe(int frame, bool compare_masks) const {
   }
   obs.silhouettes_ms = ms_since(t);
   obs.silhouettes = std::move(silhouettes);
+  if (dataset_->actors().size() > 1 && silhouettes_.method() == SilhouetteMethod::gt) {
+    obs.cover = std::move(cover);
+  }
   shape(obs.silhouettes, obs);
   return obs;
 }
 
-void Perception::shape(const std::vector<cv::Mat>& silhouettes, Observation& obs) const {
+void Perception::shape(const std::vector<cv::Mat>& given, Observation& obs) const {
   using Clock = std::chrono::steady_clock;
   auto t = Clock::now();
+  std::vector<cv::Mat> covered;
+  if (!obs.cover.empty()) {
+    for (size_t c = 0; c < given.size(); ++c) covered.push_back(given[c] | obs.cover[c]);
+  }
+  const std::vector<cv::Mat>& silhouettes = covered.empty() ? given : covered;
   obs.views.clear();
   if (options_.views) {
     for (size_t c = 0; c < silhouettes.size(); ++c) {
@@ -88,6 +103,17 @@ void Perception::shape(const std::vector<cv::Mat>& silhouettes, Observation& obs
   obs.points.reserve(obs.centerline.size());
   for (const CenterlinePoint& p : obs.centerline) obs.points.push_back(p.position);
   obs.centerline_ms += ms_since(t);
+}
+
+GateResult Perception::isolate(Observation& obs, const PlacedSurface& body) const {
+  obs.gate = gate_.restrict(obs.hull, body, obs.silhouettes, &obs.cover);
+  const GateResult& result = obs.gate;
+  if (!result.changed) return result;
+  std::erase_if(obs.rays, [&](const SilhouetteRay& r) {
+    return !obs.silhouettes[r.camera].at<std::uint8_t>(r.v, r.u);
+  });
+  shape(obs.silhouettes, obs);
+  return result;
 }
 
 void Perception::widen(Observation& obs, const OcclusionMap& occlusion) const {

@@ -10,6 +10,7 @@
 #include "tracker/moschini/appearance.h"
 #include "tracker/moschini/articulated_icp.h"
 #include "tracker/moschini/occlusion_map.h"
+#include "tracker/moschini/person_gate.h"
 #include "tracker/moschini/skeletonize.h"
 #include "tracker/moschini/visual_hull.h"
 
@@ -23,6 +24,7 @@ struct PerceptionOptions {
   int ray_stride = 4;
   bool views = true;     // nearest-silhouette-pixel maps for the fit
   bool colours = false;  // rays carry their pixel's colour (the frame's RGB image is read)
+  GateOptions gate;
 };
 
 struct Observation {
@@ -33,7 +35,12 @@ struct Observation {
   std::vector<SilhouetteRay> rays;      // through silhouette pixels on the ray grid
   std::vector<SilhouetteView> views;    // per camera, when PerceptionOptions::views
   std::vector<cv::Mat> silhouettes;     // per camera, as extracted (8-bit, nonzero = person)
-  std::vector<double> silhouette_iou;   // per camera vs the dataset's masks, when asked for
+  // Per camera, where someone else may hide the person (the other actors' pixels of the
+  // ground-truth masks): the hull is carved and the views are built from silhouettes and
+  // cover, the rays come from the silhouettes alone. Empty when no one else is known.
+  std::vector<cv::Mat> cover;
+  GateResult gate;                     // what isolate() kept
+  std::vector<double> silhouette_iou;  // per camera vs the dataset's masks, when asked for
   double silhouettes_ms = 0, hull_ms = 0, centerline_ms = 0;
 };
 
@@ -47,16 +54,21 @@ class Perception {
   // widened where `occlusion` says a camera cannot see the person; the rays keep to the
   // silhouettes as extracted. Nothing changes when no camera is blocked near the person.
   void widen(Observation& obs, const OcclusionMap& occlusion) const;
+  // Keeps the person whose body was last at `body` when the silhouettes show others too
+  // (person_gate.h): silhouettes, rays, hull and centerline then hold that person alone.
+  // Nothing changes when the hull holds no one else.
+  GateResult isolate(Observation& obs, const PlacedSurface& body) const;
   // From now on, each ray lists the parts its colour may show (needs PerceptionOptions::colours).
   void set_appearance(const AppearanceModel& appearance) { appearance_ = appearance; }
 
  private:
-  // Views, hull and centerline of `silhouettes`, timed into `obs`.
+  // Views, hull and centerline of `silhouettes` (with obs.cover), timed into `obs`.
   void shape(const std::vector<cv::Mat>& silhouettes, Observation& obs) const;
   const Dataset* dataset_;
   PerceptionOptions options_;
   SilhouetteExtractor silhouettes_;
   VisualHull hull_;
+  PersonGate gate_;
   AppearanceModel appearance_;
   // Per camera, the world direction through every pixel of the ray grid (row-major), so that
   // a frame's rays cost a lookup instead of an iterative undistortion each.

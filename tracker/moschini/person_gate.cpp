@@ -1,0 +1,155 @@
+#include "tracker/moschini/person_gate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+
+namespace simcap::tracker {
+
+namespace {
+
+// Signed distance from x to the nearest capsule of the body (negative inside).
+double body_distance(const PlacedSurface& body, const Eigen::Vector3d& x) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const PlacedCapsule& c : body) {
+    if ((x - c.centre).norm() - c.bound >= best) continue;
+    const double t = c.along(x);
+    best = std::min(best, (x - c.a - t * c.ab).norm() - c.radius(t));
+  }
+  return best;
+}
+
+}  // namespace
+
+PersonGate::PersonGate(std::vector<Camera> cameras, const GateOptions& options)
+    : cameras_(std::move(cameras)), options_(options) {}
+
+GateResult PersonGate::restrict(const Occupancy& hull, const PlacedSurface& body,
+                                std::vector<cv::Mat>& silhouettes,
+                                std::vector<cv::Mat>* cover) const {
+  GateResult result;
+  const Eigen::Vector3i& n = hull.size;
+  const auto cell = [&](int x, int y, int z) { return (y * n.z() + z) * n.x() + x; };
+  // Label the components (26-neighbourhood) with a breadth-first flood.
+  std::vector<int> label(hull.cells.size(), -1);
+  std::vector<int> queue;
+  std::vector<double> distance(hull.cells.size(), 0.0);
+  struct Component {
+    int size = 0;
+    int beyond_reach = 0;
+    double nearest = std::numeric_limits<double>::infinity();
+  };
+  std::vector<Component> components;
+  for (int y = 0; y < n.y(); ++y) {
+    for (int z = 0; z < n.z(); ++z) {
+      for (int x = 0; x < n.x(); ++x) {
+        const int start = cell(x, y, z);
+        if (!hull.cells[start] || label[start] >= 0) continue;
+        const int id = static_cast<int>(components.size());
+        Component& comp = components.emplace_back();
+        label[start] = id;
+        queue.assign(1, start);
+        for (size_t q = 0; q < queue.size(); ++q) {
+          const int i = queue[q];
+          const int cx = i % n.x(), cz = (i / n.x()) % n.z(), cy = i / (n.x() * n.z());
+          const Eigen::Vector3d p = hull.grid.center(hull.lo + Eigen::Vector3i(cx, cy, cz));
+          const double d = body_distance(body, p);
+          distance[i] = d;
+          ++comp.size;
+          comp.nearest = std::min(comp.nearest, d);
+          if (d > options_.reach_m) ++comp.beyond_reach;
+          for (int dy = -1; dy <= 1; ++dy) {
+            for (int dz = -1; dz <= 1; ++dz) {
+              for (int dx = -1; dx <= 1; ++dx) {
+                const int ax = cx + dx, ay = cy + dy, az = cz + dz;
+                if (ax < 0 || ay < 0 || az < 0 || ax >= n.x() || ay >= n.y() || az >= n.z())
+                  continue;
+                const int j = cell(ax, ay, az);
+                if (hull.cells[j] && label[j] < 0) {
+                  label[j] = id;
+                  queue.push_back(j);
+                }
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+  result.components = static_cast<int>(components.size());
+  if (components.empty()) return result;
+  // Per component: 0 dropped, 1 kept whole, 2 cut to reach_m.
+  std::vector<int> keep(components.size(), 0);
+  bool any = false;
+  for (size_t k = 0; k < components.size(); ++k) {
+    const Component& c = components[k];
+    if (c.nearest > options_.touch_m) continue;
+    any = true;
+    keep[k] = c.beyond_reach > options_.shared_fraction * c.size ? 2 : 1;
+  }
+  if (!any) {
+    const auto nearest = std::min_element(
+        components.begin(), components.end(),
+        [](const Component& a, const Component& b) { return a.nearest < b.nearest; });
+    keep[nearest - components.begin()] = 1;
+  }
+  std::vector<Eigen::Vector3d> kept;
+  for (size_t i = 0; i < hull.cells.size(); ++i) {
+    if (!hull.cells[i]) continue;
+    const int k = keep[label[i]];
+    if (k == 1 || (k == 2 && distance[i] <= options_.reach_m)) {
+      const int cx = static_cast<int>(i) % n.x(), cz = (static_cast<int>(i) / n.x()) % n.z(),
+                cy = static_cast<int>(i) / (n.x() * n.z());
+      kept.push_back(hull.grid.center(hull.lo + Eigen::Vector3i(cx, cy, cz)));
+    } else {
+      ++result.dropped_voxels;
+    }
+  }
+  result.kept_voxels = static_cast<int>(kept.size());
+  if (result.dropped_voxels == 0) return result;
+  result.changed = true;
+  // Each kept voxel covers a disc of about its circumscribed sphere's image (plus a pixel, so
+  // that neighbouring discs leave no cracks).
+  const double half_diagonal = 0.5 * std::sqrt(3.0) * hull.grid.voxel;
+  for (size_t c = 0; c < cameras_.size() && c < silhouettes.size(); ++c) {
+    const Camera& cam = cameras_[c];
+    cv::Mat reach = cv::Mat::zeros(silhouettes[c].size(), CV_8UC1);
+    cv::Mat near = cv::Mat::zeros(silhouettes[c].size(), CV_8UC1);
+    // Each capsule, widened by the margin, as a thick segment between its ends' projections
+    // (the radius taken at the nearer end's depth).
+    for (const PlacedCapsule& capsule : body) {
+      const Eigen::Vector3d qa = cam.to_camera(capsule.a),
+                            qb = cam.to_camera(capsule.a + capsule.ab);
+      const double z = std::min(qa.z(), qb.z());
+      if (z <= 0.05) continue;
+      const double r =
+          (std::max(capsule.ra, capsule.ra + capsule.dr) + options_.margin_m) * cam.K(0, 0) / z;
+      const Eigen::Vector2d pa = cam.project_camera(qa), pb = cam.project_camera(qb);
+      const cv::Point a(static_cast<int>(std::lround(pa.x())),
+                        static_cast<int>(std::lround(pa.y())));
+      const cv::Point b(static_cast<int>(std::lround(pb.x())),
+                        static_cast<int>(std::lround(pb.y())));
+      const int radius = static_cast<int>(std::ceil(r));
+      cv::line(near, a, b, cv::Scalar(255), 2 * radius + 1);
+      cv::circle(near, a, radius, cv::Scalar(255), cv::FILLED);
+      cv::circle(near, b, radius, cv::Scalar(255), cv::FILLED);
+    }
+    for (const Eigen::Vector3d& p : kept) {
+      const Eigen::Vector3d q = cam.to_camera(p);
+      if (q.z() <= half_diagonal) continue;
+      const Eigen::Vector2d px = cam.project_camera(q);
+      const int r = static_cast<int>(std::ceil(half_diagonal * cam.K(0, 0) / q.z())) + 1;
+      cv::circle(
+          reach,
+          cv::Point(static_cast<int>(std::lround(px.x())), static_cast<int>(std::lround(px.y()))),
+          r, cv::Scalar(255), cv::FILLED);
+    }
+    reach &= near;
+    silhouettes[c] = silhouettes[c] & reach;
+    if (cover && c < cover->size() && !(*cover)[c].empty()) (*cover)[c] = (*cover)[c] & reach;
+  }
+  return result;
+}
+
+}  // namespace simcap::tracker
