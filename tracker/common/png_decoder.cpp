@@ -57,7 +57,6 @@ cv::Mat decode_png(const std::filesystem::path& path, int flags) {
       return cv::Mat();
     }
   };
-  if (flags != cv::IMREAD_UNCHANGED && flags != cv::IMREAD_COLOR) return fallback();
   std::error_code error;
   const auto size = std::filesystem::file_size(path, error);
   std::ifstream in(path, std::ios::binary);
@@ -66,7 +65,9 @@ cv::Mat decode_png(const std::filesystem::path& path, int flags) {
   if (!in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size))) {
     return {};
   }
-  if (bytes.size() < 8 || png_sig_cmp(bytes.data(), 0, 8) != 0) return fallback();
+  // Not a PNG: cv::imread would try every decoder it has on it, and GDCM's DICOM reader aborts
+  // the process on some bytes (a fuzzing finding).
+  if (bytes.size() < 8 || png_sig_cmp(bytes.data(), 0, 8) != 0) return {};
   // The size the IHDR chunk (always first) claims, checked before either decoder sees the file:
   // a file libpng refuses still goes to cv::imread, which would allocate up to 2^30 pixels.
   const auto be32 = [&](std::size_t at) {
@@ -82,6 +83,7 @@ cv::Mat decode_png(const std::filesystem::path& path, int flags) {
     if (static_cast<std::size_t>(be32(at)) + 12 > bytes.size() - at) return {};
     if (std::memcmp(bytes.data() + at + 4, "IEND", 4) == 0) break;
   }
+  if (flags != cv::IMREAD_UNCHANGED && flags != cv::IMREAD_COLOR) return fallback();
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   struct Release {

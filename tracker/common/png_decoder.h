@@ -9,8 +9,9 @@ namespace simcap::tracker {
 
 // As cv::imread(path, flags) for flags cv::IMREAD_UNCHANGED and cv::IMREAD_COLOR (BGR), and the
 // same pixels. Files this path does not cover (16 bits, palettes, alpha, interlacing, grey read
-// as colour, damaged files) go to cv::imread. Empty when the file cannot be read; a header that
-// claims more pixels than limits.h allows throws Error naming the limit (check_image_size).
+// as colour, damaged files) go to cv::imread. Empty when the file cannot be read or is not a
+// PNG; a header that claims more pixels than limits.h allows throws Error naming the limit
+// (check_image_size).
 cv::Mat decode_png(const std::filesystem::path& path, int flags);
 
 }  // namespace simcap::tracker

@@ -83,5 +83,25 @@ TEST(PngDecoder, RefusesAHeaderClaimingTooManyPixelsBeforeAllocating) {
   }
 }
 
+// A frame that is not a PNG is unreadable, whatever else it may be: cv::imread would hand it to
+// every decoder OpenCV has (a DICOM reader aborts on some bytes), and a chunk claiming more
+// than the file holds is damage, refused before anything allocates what it claims.
+TEST(PngDecoder, NotAPngAndOverlongChunksAreUnreadable) {
+  testing::TempDir dir;
+  const cv::Mat grey(4, 6, CV_8UC1, cv::Scalar(90));
+  cv::imwrite((dir / "frame.bmp").string(), grey);
+  std::filesystem::copy_file(dir / "frame.bmp", dir / "bmp.png");
+  ASSERT_FALSE(cv::imread((dir / "bmp.png").string(), cv::IMREAD_UNCHANGED).empty());
+  std::vector<std::uint8_t> png;
+  cv::imencode(".png", grey, png);
+  png[33] = 0x7f;  // the length of the chunk after IHDR: 2 GB, beyond the file's end
+  std::ofstream(dir / "overlong.png", std::ios::binary)
+      .write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+  for (const int flags : {cv::IMREAD_UNCHANGED, cv::IMREAD_COLOR, cv::IMREAD_GRAYSCALE}) {
+    EXPECT_TRUE(decode_png(dir / "bmp.png", flags).empty()) << flags;
+    EXPECT_TRUE(decode_png(dir / "overlong.png", flags).empty()) << flags;
+  }
+}
+
 }  // namespace
 }  // namespace simcap::tracker
