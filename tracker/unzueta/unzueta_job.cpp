@@ -14,6 +14,7 @@
 #include "models/humanoid.h"
 #include "tracker/common/dataset.h"
 #include "tracker/common/mask_box.h"
+#include "tracker/common/png_decoder.h"
 #include "tracker/unzueta/depth_lookup.h"
 #include "tracker/unzueta/part_model.h"
 #include "tracker/unzueta/sik.h"
@@ -155,7 +156,7 @@ class Pipeline {
       for (size_t i = 0; i < cameras_.size(); ++i) {
         const fs::path labels =
             ds_.root() / camera(cameras_[i]).name / "parts" / frame_name(f, "png");
-        const cv::Mat l = cv::imread(labels.string(), cv::IMREAD_UNCHANGED);
+        const cv::Mat l = decode_png(labels, cv::IMREAD_UNCHANGED);
         if (l.empty())
           throw Error(labels.string() +
                       ": missing or unreadable (--init gt reads the part labels)");
