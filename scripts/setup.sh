@@ -3,8 +3,9 @@
 # --fuzz adds clang and its libFuzzer runtime, which only `make fuzz` needs.
 set -euo pipefail
 
-# slurmctld, slurmd, slurm-client, munge: the one-node cluster of tests/collect's Slurm test
-# (started by the test itself in a temporary folder; the packages' services are not used).
+# slurmctld, slurmd, slurm-client, munge: the one-node cluster scripts/slurm_local.sh starts as
+# the user in a folder of its own (for --submit on a workstation and tests/collect's Slurm test);
+# the packages' services are not used.
 # openimageio-tools: Debian's OpenImageIOConfig.cmake imports its programs (/usr/bin/iconvert),
 # so find_package(OpenImageIO) fails without them, and libopenimageio-dev only recommends them.
 packages=(
