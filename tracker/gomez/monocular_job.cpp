@@ -158,7 +158,8 @@ TrackSummary track_monocular(const fs::path& dataset_path, const fs::path& out,
   std::optional<Skeleton> skeleton;
   std::string body_csv, classes_csv;
   const TrackSummary summary = run_monocular(
-      dataset, options, options.max_frames, [&](int frame, const TrackedFrame& t, const MonocularTracker& tracker) {
+      dataset, options, options.max_frames,
+      [&](int frame, const TrackedFrame& t, const MonocularTracker& tracker) {
         const Body& body = tracker.body();
         if (!skeleton) {
           skeleton = body.skeleton;
