@@ -69,7 +69,10 @@ Detections read_detections(const std::filesystem::path& path,
 }
 
 void write_coco_results(const Detections& d, const std::filesystem::path& path) {
-  const auto rounded = [](double v, double unit) { return std::round(v / unit) * unit; };
+  // Dividing by an integer power of ten prints the shortest decimal; multiplying by 1e-3 does not.
+  const auto rounded = [](double v, double per_unit) {
+    return std::round(v * per_unit) / per_unit;
+  };
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
   const int cameras = static_cast<int>(d.cameras().size());
   for (int f = 0; f < d.frames(); ++f) {
@@ -77,14 +80,14 @@ void write_coco_results(const Detections& d, const std::filesystem::path& path) 
       for (const DetectedPerson& p : d.at(f, c)) {
         nlohmann::ordered_json triples = nlohmann::ordered_json::array();
         for (const DetectedKeypoint& k : p.keypoints) {
-          triples.push_back(rounded(k.x, 1e-3));
-          triples.push_back(rounded(k.y, 1e-3));
-          triples.push_back(rounded(k.score, 1e-6));
+          triples.push_back(rounded(k.x, 1e3));
+          triples.push_back(rounded(k.y, 1e3));
+          triples.push_back(rounded(k.score, 1e6));
         }
         out.push_back({{"image_id", 1 + static_cast<long>(f) * cameras + c},
                        {"category_id", 1},
                        {"keypoints", triples},
-                       {"score", rounded(p.score, 1e-6)}});
+                       {"score", rounded(p.score, 1e6)}});
       }
     }
   }

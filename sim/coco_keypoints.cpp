@@ -75,6 +75,7 @@ void CocoKeypoints::add_frame(int frame,
       const auto& kp = views[c].at(a);
       if (kp.size() != kKeypoints) throw Error("COCO keypoints: expected 17 keypoint views");
       nlohmann::ordered_json triples = nlohmann::ordered_json::array();
+      nlohmann::ordered_json labels = nlohmann::ordered_json::array();
       int labelled = 0;
       for (const JointView& v : kp) {
         const int flag = v.visibility == Visibility::visible        ? 2
@@ -84,6 +85,7 @@ void CocoKeypoints::add_frame(int frame,
         triples.push_back(flag ? rounded(v.pixel.y()) : 0.0);
         triples.push_back(flag);
         labelled += flag > 0;
+        labels.push_back(visibility_name(v.visibility));
       }
       annotations.push_back({{"id", annotations.size() + 1},
                              {"image_id", image_id},
@@ -91,6 +93,7 @@ void CocoKeypoints::add_frame(int frame,
                              {"actor", actors_[a]},
                              {"keypoints", triples},
                              {"num_keypoints", labelled},
+                             {"visibility", labels},
                              {"bbox", {box.x0, box.y0, box.x1 - box.x0 + 1, box.y1 - box.y0 + 1}},
                              {"area", box.pixels},
                              {"iscrowd", 0}});

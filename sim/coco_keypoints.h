@@ -24,7 +24,9 @@ class CocoKeypoints {
   // pixel is (0, 0), as COCO's keypoint annotations), v = 2 visible, 1 self_occluded or
   // scene_occluded, 0 out_of_frame (then x = y = 0); num_keypoints counts v > 0; bbox
   // [x, y, width, height] covers the actor's mask pixels (x, y at their top-left edges), area
-  // their count; iscrowd 0. `views` are FrameTruth::coco_views, `boxes` [camera][actor].
+  // their count; iscrowd 0; and simcap's own member visibility: per keypoint the ground
+  // truth's label (visible, self_occluded, scene_occluded, out_of_frame), which v merges. `views`
+  // are FrameTruth::coco_views, `boxes` [camera][actor].
   void add_frame(int frame, const std::vector<std::vector<std::vector<JointView>>>& views,
                  const std::vector<std::vector<MaskBox>>& boxes);
   // images, annotations (in frame, camera, actor order) and categories (person, with COCO's

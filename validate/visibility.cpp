@@ -46,6 +46,13 @@ std::string_view visibility_label_name(VisibilityLabel v) {
   return "missing";
 }
 
+std::optional<VisibilityLabel> visibility_label_of(std::string_view name) {
+  for (const VisibilityLabel v : kLabelled) {
+    if (visibility_label_name(v) == name) return v;
+  }
+  return std::nullopt;
+}
+
 int VisibilityTable::frame_index(int frame) const {
   const auto it = std::lower_bound(frames.begin(), frames.end(), frame);
   return it != frames.end() && *it == frame ? static_cast<int>(it - frames.begin()) : -1;
@@ -76,10 +83,8 @@ VisibilityTable read_visibility_table(const fs::path& path,
     if (added) table.joints.push_back(joint);
     const int j = it->second;
     const std::string& label = csv.text(6);
-    const auto* v =
-        std::find_if(std::begin(kLabelled), std::end(kLabelled),
-                     [&](VisibilityLabel x) { return visibility_label_name(x) == label; });
-    if (v == std::end(kLabelled)) {
+    const std::optional<VisibilityLabel> v = visibility_label_of(label);
+    if (!v) {
       csv.fail(6, "expected visible, self_occluded, scene_occluded or out_of_frame, got '" + label +
                       "'");
     }

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -20,6 +21,8 @@ enum class VisibilityLabel : std::uint8_t {
 
 // The label as written in joints2d.csv ("visible", ...); "missing" for a row the table lacks.
 std::string_view visibility_label_name(VisibilityLabel v);
+// The label a joints2d.csv cell names; empty for any other text (and for "missing").
+std::optional<VisibilityLabel> visibility_label_of(std::string_view name);
 
 // The columns of gt/joints2d.csv (ARCHITECTURE.md, dataset layout).
 inline const std::vector<std::string> kJoints2dColumns = {"frame", "camera", "joint",     "u",

@@ -21,6 +21,7 @@ void add_motion(CLI::App& app, Action& action);
 void add_ik_eval(CLI::App& app, Action& action);
 void add_gestures(CLI::App& app, Action& action);
 void add_export(CLI::App& app, Action& action);
+void add_detections(CLI::App& app, Action& action);
 void add_collect(CLI::App& app, Action& action);
 void add_version(CLI::App& app, Action& action);
 

@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   add_ik_eval(app, action);
   add_gestures(app, action);
   add_export(app, action);
+  add_detections(app, action);
   add_collect(app, action);
   add_version(app, action);
   try {

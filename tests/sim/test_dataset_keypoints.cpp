@@ -128,6 +128,7 @@ TEST_F(KeypointDataset, CocoAnnotationsAgreeWithTablesAndMasks) {
                            : row.visibility == "out_of_frame" ? 0
                                                               : 1;
       EXPECT_EQ(v, expected) << name;
+      EXPECT_EQ(ann["visibility"][k], row.visibility) << name;
       if (v > 0) {
         EXPECT_NEAR(x, row.u, 0.0005 + 1e-6) << name;
         EXPECT_NEAR(y, row.v, 0.0005 + 1e-6) << name;
