@@ -19,7 +19,7 @@
 #include "tracker/unzueta/part_model.h"
 #include "tracker/unzueta/sik.h"
 #include "tracker/unzueta/sik_track_job.h"
-#include "tracker/unzueta/triangulation.h"
+#include "tracker/common/triangulation.h"
 
 namespace simcap::tracker {
 namespace fs = std::filesystem;

@@ -13,7 +13,7 @@
 
 #include "tracker/unzueta/cfof.h"
 #include "tracker/unzueta/point_kalman.h"
-#include "tracker/unzueta/triangulation.h"
+#include "tracker/common/triangulation.h"
 
 namespace simcap::tracker {
 namespace {
