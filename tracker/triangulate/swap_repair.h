@@ -13,7 +13,7 @@ namespace simcap::tracker {
 struct SwapRepairOptions {
   // A pair is examined only when one of its keypoints reprojects worse than this (pixels) in
   // some view of its all-views DLT: agreeing views cost nothing.
-  double min_error_px = 15.0;
+  double min_error_px = 6.0;
   // A view's labels are exchanged when that lowers the pair's summed RMS reprojection error to
   // less than this fraction of what it was.
   double gain = 0.5;
