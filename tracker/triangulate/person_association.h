@@ -1,5 +1,5 @@
-// Which detected person in each camera is the tracked actor: the one nearest the pose predicted
-// from the last frame, or, with no prediction, the views that triangulate consistently.
+// Which detected person in each camera is the tracked actor: the one nearest where the actor was
+// expected in that image, else the one that triangulates consistently with the cameras that know.
 #pragma once
 
 #include <Eigen/Core>
@@ -19,28 +19,33 @@ struct PersonKeypoints {
 
 struct AssociationOptions {
   double min_confidence = 0.2;  // keypoints scored lower are ignored
-  // A person is the predicted one when its median keypoint distance to the prediction's
-  // projection is below this fraction of the projected body's bounding-box diagonal.
+  // A person is the expected one when its median keypoint distance to the expectation is below
+  // this fraction of the expectation's bounding-box diagonal.
   double gate = 0.25;
-  // Seeding: a view joins the reference when its keypoints triangulate with the reference's to
-  // a median reprojection error below this (pixels).
-  double seed_error_px = 20.0;
+  // With a single camera chosen, a second joins when its person's keypoints triangulate with
+  // the chosen one's to a median reprojection error below this (pixels).
+  double join_error_px = 20.0;
 };
+
+// How a camera's person was chosen.
+enum class AssociationKind { none, tracked, joined, seeded };
 
 struct Association {
   std::vector<int> person;   // per camera: index into that camera's people, -1 none
-  std::vector<double> cost;  // per camera: the chosen person's median distance/error, pixels
-  bool seeded = false;       // chosen without a prediction
+  std::vector<double> cost;  // per camera: median distance to the expectation / pair error, px
+  std::vector<AssociationKind> kind;
 };
 
-// `predicted`: the keypoints' world positions expected in this frame (nullopt: unknown), or
-// empty to seed. With a prediction, fewer than two cameras matching it falls back to seeding.
-// Seeding takes as reference the most prominent person (summed confident scores times the
-// keypoints' bounding-box diagonal) and adds in every other camera the person that
-// triangulates with it best.
+// `expected[c]`: where the actor's keypoints are expected in camera c (the person chosen there in
+// the last frame, or the first frame's ground truth projected); no keypoints: nothing expected.
+// Cameras whose expectation a person matches keep it ("tracked"); the others take the person
+// nearest the tracked people's keypoints triangulated and projected ("joined"; with a single
+// tracked camera, the view that triangulates best with it joins first). Without any tracked
+// camera the most prominent person of all (summed confident scores times the keypoints'
+// bounding-box diagonal) is the reference ("seeded") and the other cameras join it.
 Association associate_people(std::span<const Camera> cameras,
                              const std::vector<std::vector<PersonKeypoints>>& people,
-                             const std::vector<std::optional<Eigen::Vector3d>>& predicted,
+                             const std::vector<PersonKeypoints>& expected,
                              const AssociationOptions& options = {});
 
 }  // namespace simcap::tracker

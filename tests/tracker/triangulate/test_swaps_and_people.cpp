@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <random>
 
 #include "rig.h"
@@ -92,22 +93,31 @@ TEST(PersonAssociation, FindsTheSamePersonInEveryCameraAndFollowsIt) {
     }
   }
   const Association seeded = associate_people(cams, people, {});
-  EXPECT_TRUE(seeded.seeded);
   // Seeding picks one person consistently: either all actor or all other.
   const bool picked_actor = seeded.person[0] == 1;
   for (int c = 0; c < 4; ++c) {
     EXPECT_EQ(seeded.person[c], (c % 2 == 1) == picked_actor ? 0 : 1) << "camera " << c;
     EXPECT_LT(seeded.cost[c], 1e-6);
   }
-  // With the actor's predicted pose (moved 3 cm since), the actor is chosen everywhere.
-  std::vector<std::optional<Eigen::Vector3d>> predicted;
-  for (const auto& x : actor) predicted.push_back(x + Eigen::Vector3d(0.03, 0, 0));
-  const Association followed = associate_people(cams, people, predicted);
-  EXPECT_FALSE(followed.seeded);
-  for (int c = 0; c < 4; ++c) EXPECT_EQ(followed.person[c], c % 2 ? 0 : 1) << "camera " << c;
-  // A camera without the actor chooses nobody rather than the other person.
+  EXPECT_EQ(std::count(seeded.kind.begin(), seeded.kind.end(), AssociationKind::seeded), 1);
+  // Expected where the actor was a moment ago (3 cm away): the actor is chosen everywhere.
+  std::vector<Eigen::Vector3d> moved = actor;
+  for (auto& x : moved) x += Eigen::Vector3d(0.03, 0, 0);
+  std::vector<PersonKeypoints> expected;
+  for (const Camera& c : cams) expected.push_back(seen(c, moved));
+  const Association followed = associate_people(cams, people, expected);
+  for (int c = 0; c < 4; ++c) {
+    EXPECT_EQ(followed.person[c], c % 2 ? 0 : 1) << "camera " << c;
+    EXPECT_EQ(followed.kind[c], AssociationKind::tracked);
+  }
+  // A camera that lost the actor joins the others through triangulation; one without the
+  // actor chooses nobody rather than the other person.
+  expected[1].keypoints.clear();
   people[3] = {seen(cams[3], other)};
-  EXPECT_EQ(associate_people(cams, people, predicted).person[3], -1);
+  const Association rejoined = associate_people(cams, people, expected);
+  EXPECT_EQ(rejoined.person[1], 0);
+  EXPECT_EQ(rejoined.kind[1], AssociationKind::joined);
+  EXPECT_EQ(rejoined.person[3], -1);
 }
 
 }  // namespace
