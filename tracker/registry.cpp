@@ -50,6 +50,16 @@ TrackSummary run_monocular_family(const fs::path& dataset, const fs::path& out,
   return track_monocular(dataset, out, m);
 }
 
+TrackSummary run_triangulate_family(const fs::path& dataset, const fs::path& out,
+                                    const TrackOptions& o) {
+  TriangulateOptions t = o.triangulate;
+  t.init = o.init;
+  t.actor = o.actor;
+  t.max_frames = o.max_frames;
+  t.quiet = o.quiet;
+  return track_triangulate(dataset, out, t);
+}
+
 constexpr std::array kFamilies{
     TrackerFamily{TrackMethod::moschini,
                   "multi-camera: visual hull, centerline, articulated ICP (Moschini 2009)",
@@ -88,6 +98,19 @@ constexpr std::array kFamilies{
                     return n;
                   },
                   false, run_monocular_family},
+    TrackerFamily{TrackMethod::triangulate,
+                  "a 2D detector's keypoints in every camera (--detections), triangulated: "
+                  "weighted DLT, camera exclusion, left/right swap repair",
+                  [](const TrackOptions& o) {
+                    // Two views to triangulate; the frame list from the colour frames the
+                    // detector ran on; --init gt finds the actor among several people.
+                    DatasetNeeds n;
+                    n.min_cameras = 2;
+                    n.colour = true;
+                    n.ground_truth = o.init == InitMethod::gt;
+                    return n;
+                  },
+                  true, run_triangulate_family},
 };
 
 std::string method_name(TrackMethod m) {

@@ -11,17 +11,20 @@
 #include "tracker/common/silhouettes.h"
 #include "tracker/gomez/monocular_job.h"
 #include "tracker/moschini/moschini_job.h"
+#include "tracker/triangulate/triangulate_job.h"
 #include "tracker/track_export.h"
 #include "tracker/unzueta/sik_track_job.h"
 
 namespace simcap::tracker {
 
 // automatic: the family that suits the dataset's cameras (registry.h, resolve_method).
-enum class TrackMethod { automatic, moschini, sik, monocular };
-inline constexpr NameTable<TrackMethod, 4> kTrackMethods{{{"auto", TrackMethod::automatic},
-                                                          {"moschini", TrackMethod::moschini},
-                                                          {"sik", TrackMethod::sik},
-                                                          {"monocular", TrackMethod::monocular}}};
+enum class TrackMethod { automatic, moschini, sik, monocular, triangulate };
+inline constexpr NameTable<TrackMethod, 5> kTrackMethods{
+    {{"auto", TrackMethod::automatic},
+     {"moschini", TrackMethod::moschini},
+     {"sik", TrackMethod::sik},
+     {"monocular", TrackMethod::monocular},
+     {"triangulate", TrackMethod::triangulate}}};
 
 struct TrackOptions {
   TrackMethod method = TrackMethod::automatic;
@@ -44,6 +47,7 @@ struct TrackOptions {
   MoschiniOptions moschini;
   SikTrackOptions sik;
   MonocularOptions monocular;
+  TriangulateOptions triangulate;
 };
 
 }  // namespace simcap::tracker

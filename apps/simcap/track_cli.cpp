@@ -12,7 +12,7 @@ namespace simcap::cli {
 namespace {
 
 // Sweep keys and the options they set (sweep files name the voxel and noise with their unit).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 23> kSweepKeys{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 27> kSweepKeys{{
     {"method", "--method"},
     {"actor", "--actor"},
     {"silhouettes", "--silhouettes"},
@@ -36,6 +36,10 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 23> kSweepKe
     {"work_height", "--work-height"},
     {"diffusion", "--diffusion"},
     {"floor", "--floor"},
+    {"smooth", "--smooth"},
+    {"cutoff_hz", "--cutoff"},
+    {"max_error_px", "--max-error"},
+    {"swaps", "--swaps"},
 }};
 
 // "h1,h3", "all" or "none" -> the particle filter's switches; an error message otherwise.
@@ -73,6 +77,13 @@ std::string heuristics_text(const tracker::gomez::FilterOptions& f) {
     if (on[i]) s += (s.empty() ? "h" : ",h") + std::to_string(i + 1);
   }
   return s.empty() ? "none" : s == "h1,h2,h3,h4,h5" ? "all" : s;
+}
+
+template <typename Table>
+std::vector<std::string> choices_of(const Table& table) {
+  std::vector<std::string> names;
+  for (const auto& [name, value] : table) names.emplace_back(name);
+  return names;
 }
 
 std::string method_help() {
@@ -141,8 +152,6 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
                   "sik: standard deviation of the noise added to the end-effectors, metres")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  std::vector<std::string> export_names;
-  for (const auto& [name, value] : kMotionExports) export_names.emplace_back(name);
   cmd->add_option_function<std::vector<std::string>>(
          "--export",
          [&o](const std::vector<std::string>& words) {
@@ -159,7 +168,7 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
              "; simcap's humanoid sized to the track (monocular writes its own body's "
              "motion.bvh and motion.bap)")
       ->delimiter(',')
-      ->check(CLI::IsMember(export_names));
+      ->check(CLI::IsMember(choices_of(kMotionExports)));
   gomez::MonocularSettings& m = o.monocular.tracker;
   add_choice(cmd, "--body", m.body, gomez::kBodyKinds,
              "monocular: the tracked body, full (root, trunk, neck, arms, legs) or upper (the "
@@ -197,6 +206,36 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
                   "monocular: scale S of the particles' random diffusion (eq. 4.13)")
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
+  TriangulateOptions& t = o.triangulate;
+  cmd->add_option("--detections", t.detections,
+                  "triangulate: the 2D keypoints of every camera: COCO keypoint results JSON "
+                  "(image_id = 1 + frame x cameras + camera, or file_name camNN/rgb/FRAME.png), "
+                  "an OpenPose output folder (one folder per camera) or a CSV "
+                  "(frame,camera,person,keypoint,x,y,score)");
+  cmd->add_option_function<std::string>(
+         "--layout",
+         [&t](const std::string& word) {
+           for (const auto& [name, value] : kKeypointLayouts) {
+             if (word == name) t.layout = value;
+           }
+         },
+         "triangulate: the detections' keypoint layout, " + choices_text(kKeypointLayouts) +
+             " (default: from the keypoint count; 17 is read as coco17)")
+      ->check(CLI::IsMember(choices_of(kKeypointLayouts)));
+  add_choice(cmd, "--smooth", t.filter, kTemporalFilters,
+             "triangulate: none, or butterworth (zero-phase low-pass of every keypoint over "
+             "time, Pose2Sim's filter)");
+  cmd->add_option("--cutoff", t.cutoff_hz, "triangulate --smooth butterworth: cut-off, Hz")
+      ->check(CLI::Range(0.1, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--max-error", t.triangulation.point.max_error_px,
+                  "triangulate: a keypoint's views are excluded, worst first, while one "
+                  "reprojects farther than this, pixels (never below two views)")
+      ->check(CLI::Range(0.5, 1000.0))
+      ->capture_default_str();
+  add_choice(cmd, "--swaps", t.triangulation.repair_swaps, kOnOff,
+             "triangulate: on (a view whose left/right labels of a pair triangulate clearly "
+             "better exchanged is repaired) or off");
   if (scope == TrackOptionScope::loop) return;
   cmd->add_option("--inspect", o.inspect,
                   "Frames to lay open, comma-separated, in diagnostics/inspect/: moschini, per "
@@ -245,6 +284,11 @@ std::string track_options_text(const tracker::TrackOptions& o) {
     s += ", silhouettes " + std::string(name_of(kSilhouetteMethods, o.silhouettes));
   } else {
     s += ", effectors " + std::string(name_of(kEffectorSources, o.sik.effectors));
+  }
+  if (o.method == TrackMethod::triangulate) {
+    const TriangulateOptions& t = o.triangulate;
+    s += ", smooth " + std::string(name_of(kTemporalFilters, t.filter)) + ", max error " +
+         std::to_string(t.triangulation.point.max_error_px) + " px";
   }
   if (o.method == TrackMethod::monocular) {
     const gomez::MonocularSettings& m = o.monocular.tracker;

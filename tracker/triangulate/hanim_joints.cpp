@@ -1,0 +1,147 @@
+#include "tracker/triangulate/hanim_joints.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <limits>
+#include <map>
+
+#include "core/error.h"
+#include "models/body_mesh.h"
+#include "models/humanoid.h"
+#include "models/keypoint_sets.h"
+
+namespace simcap::tracker {
+namespace {
+
+// Anchors by the body point they are: COCO-17 names (every layout's twin of them), plus
+// Human3.6M's Head (the top of the head) for layouts without ears.
+using Anchors = std::map<std::string, Eigen::Vector3d>;
+
+Anchors reference_anchors() {
+  const Skeleton s = build_humanoid();
+  const BodyMesh mesh = build_body_mesh(s);
+  Anchors a;
+  for (const BodyPoint& p : coco17_points(s, mesh)) a[p.name] = s[p.joint].center + p.offset;
+  for (const BodyPoint& p : h36m17_points(s, mesh)) {
+    if (p.name == "Head") a["Head"] = s[p.joint].center + p.offset;
+  }
+  for (const char* j : {"humanoid_root", "vc7", "skullbase"}) a[j] = s[s.require(j)].center;
+  return a;
+}
+
+// The keypoint that is `anchor`: its COCO twin, or its Human3.6M truth point.
+int keypoint_of(const KeypointLayout& layout, const std::string& anchor) {
+  for (int k = 0; k < layout.size(); ++k) {
+    const LayoutKeypoint& kp = layout.keypoints[k];
+    if (kp.coco_twin == anchor) return k;
+    if (kp.truth == TruthKind::h36m17_point && kp.truth_name == anchor) return k;
+  }
+  return -1;
+}
+
+struct Frame {
+  Eigen::Vector3d origin;
+  Eigen::Matrix3d axes;  // columns x, y, z
+  double unit = 0;
+};
+
+std::optional<Frame> frame_of(const Eigen::Vector3d& left, const Eigen::Vector3d& right,
+                              const Eigen::Vector3d& toward) {
+  Frame f;
+  f.origin = 0.5 * (left + right);
+  const Eigen::Vector3d t = toward - f.origin;
+  const Eigen::Vector3d x = (left - right).normalized();
+  const Eigen::Vector3d y = t - t.dot(x) * x;
+  f.unit = t.norm();
+  if (!((left - right).norm() > 1e-9) || !(y.norm() > 1e-9)) return std::nullopt;
+  f.axes.col(0) = x;
+  f.axes.col(1) = y.normalized();
+  f.axes.col(2) = x.cross(f.axes.col(1));
+  return f;
+}
+
+struct Rule {
+  const char* joint;
+  const char* text;
+  const char *left, *right;
+  std::vector<std::string> toward;
+};
+
+// In order of preference per joint; the first whose anchors the layout has is used.
+const std::vector<Rule>& rules() {
+  static const std::vector<Rule> r = {
+      {"humanoid_root", "hips -> shoulders", "left_hip", "right_hip",
+       {"left_shoulder", "right_shoulder"}},
+      {"vc7", "shoulders -> hips", "left_shoulder", "right_shoulder", {"left_hip", "right_hip"}},
+      {"skullbase", "ears -> nose", "left_ear", "right_ear", {"nose"}},
+      {"skullbase", "shoulders -> head top", "left_shoulder", "right_shoulder", {"Head"}},
+  };
+  return r;
+}
+
+}  // namespace
+
+HAnimJoints::HAnimJoints(const KeypointLayout& layout) {
+  for (int k = 0; k < layout.size(); ++k) {
+    const LayoutKeypoint& kp = layout.keypoints[k];
+    if (kp.truth != TruthKind::hanim_joint) continue;
+    joints_.emplace_back(kp.truth_name);
+    direct_.push_back(k);
+  }
+  const Anchors ref = reference_anchors();
+  for (const Rule& r : rules()) {
+    if (std::find(joints_.begin(), joints_.end(), r.joint) != joints_.end()) continue;
+    DerivedJoint d{r.joint, r.text, {keypoint_of(layout, r.left), keypoint_of(layout, r.right)},
+                   {}, Eigen::Vector3d::Zero()};
+    Eigen::Vector3d toward = Eigen::Vector3d::Zero();
+    for (const std::string& t : r.toward) {
+      d.toward.push_back(keypoint_of(layout, t));
+      toward += ref.at(t) / static_cast<double>(r.toward.size());
+    }
+    if (d.lateral[0] < 0 || d.lateral[1] < 0 ||
+        std::find(d.toward.begin(), d.toward.end(), -1) != d.toward.end()) {
+      continue;
+    }
+    const auto f = frame_of(ref.at(r.left), ref.at(r.right), toward);
+    if (!f) throw Error(std::string("reference humanoid: degenerate frame for ") + r.joint);
+    d.offset = f->axes.transpose() * (ref.at(r.joint) - f->origin) / f->unit;
+    joints_.push_back(d.joint);
+    derived_.push_back(std::move(d));
+  }
+  std::string missing;
+  for (const std::string& j : he15_joints()) {
+    if (std::find(joints_.begin(), joints_.end(), j) == joints_.end()) {
+      missing += (missing.empty() ? "" : ", ") + j;
+    }
+  }
+  if (!missing.empty()) {
+    throw Error(std::string("keypoint layout ") + std::string(layout.title) +
+                " gives no H-Anim " + missing + " (the HE15 joints validate scores)");
+  }
+}
+
+std::vector<Eigen::Vector3d> HAnimJoints::place(
+    const std::vector<std::optional<Eigen::Vector3d>>& keypoints) const {
+  const Eigen::Vector3d nan = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(joints_.size());
+  const auto at = [&](int k) -> std::optional<Eigen::Vector3d> {
+    return k >= 0 && k < static_cast<int>(keypoints.size()) ? keypoints[k] : std::nullopt;
+  };
+  for (const int k : direct_) out.push_back(at(k).value_or(nan));
+  for (const DerivedJoint& d : derived_) {
+    const auto l = at(d.lateral[0]), r = at(d.lateral[1]);
+    Eigen::Vector3d toward = Eigen::Vector3d::Zero();
+    bool complete = l && r;
+    for (const int t : d.toward) {
+      const auto p = at(t);
+      complete = complete && p;
+      if (p) toward += *p / static_cast<double>(d.toward.size());
+    }
+    const auto f = complete ? frame_of(*l, *r, toward) : std::nullopt;
+    out.push_back(f ? Eigen::Vector3d(f->origin + f->unit * (f->axes * d.offset)) : nan);
+  }
+  return out;
+}
+
+}  // namespace simcap::tracker
