@@ -32,6 +32,17 @@ std::optional<Eigen::Vector3d> triangulate(std::span<const DltView> views) {
   return point;
 }
 
+std::optional<Eigen::Vector3d> triangulate_pixel_weighted(std::span<const DltView> views) {
+  const auto first = triangulate(views);
+  if (!first || views.size() > 64) return first;
+  DltView scaled[64];
+  for (size_t i = 0; i < views.size(); ++i) {
+    scaled[i] = views[i];
+    scaled[i].weight *= views[i].camera->K(0, 0) / views[i].camera->to_camera(*first).z();
+  }
+  return triangulate(std::span<const DltView>(scaled, views.size()));
+}
+
 std::optional<Eigen::Vector3d> triangulate(const std::vector<PixelObservation>& views) {
   std::vector<DltView> dlt;
   dlt.reserve(views.size());

@@ -33,6 +33,11 @@ DltView dlt_view(const PixelObservation& observation);
 // with fewer than two views or when the rays are parallel (the point would be at infinity)
 // or it lies behind a camera.
 std::optional<Eigen::Vector3d> triangulate(std::span<const DltView> views);
+// The DLT solved again with each view's rows scaled by its focal length over the point's depth
+// in that camera, so that the algebraic residuals become pixel residuals: the plain DLT weighs
+// far cameras more (a row's residual is the depth times the normalized error), this one weighs
+// every camera by its pixel noise, as the maximum-likelihood point does to first order.
+std::optional<Eigen::Vector3d> triangulate_pixel_weighted(std::span<const DltView> views);
 // The same from pixels, each camera's lens distortion removed first.
 std::optional<Eigen::Vector3d> triangulate(const std::vector<PixelObservation>& views);
 

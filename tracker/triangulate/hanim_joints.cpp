@@ -120,6 +120,37 @@ HAnimJoints::HAnimJoints(const KeypointLayout& layout) {
   }
 }
 
+std::vector<std::string> HAnimJoints::calibrate(const KeypointLayout& layout,
+                                                const JointTrack& truth, int frame_index) {
+  const auto joint = [&](const std::string& name) -> std::optional<Eigen::Vector3d> {
+    const int j = truth.joint_index(name);
+    if (j < 0 || frame_index >= static_cast<int>(truth.positions.size())) return std::nullopt;
+    const Eigen::Vector3d p = truth.positions[frame_index][j];
+    return p.allFinite() ? std::optional(p) : std::nullopt;
+  };
+  const auto keypoint = [&](int k) -> std::optional<Eigen::Vector3d> {
+    const LayoutKeypoint& kp = layout.keypoints[k];
+    if (kp.truth != TruthKind::hanim_joint) return std::nullopt;
+    return joint(std::string(kp.truth_name));
+  };
+  std::vector<std::string> measured;
+  for (DerivedJoint& d : derived_) {
+    const auto l = keypoint(d.lateral[0]), r = keypoint(d.lateral[1]), target = joint(d.joint);
+    bool complete = l && r && target;
+    Eigen::Vector3d toward = Eigen::Vector3d::Zero();
+    for (const int t : d.toward) {
+      const auto p = keypoint(t);
+      complete = complete && p;
+      if (p) toward += *p / static_cast<double>(d.toward.size());
+    }
+    const auto f = complete ? frame_of(*l, *r, toward) : std::nullopt;
+    if (!f) continue;
+    d.offset = f->axes.transpose() * (*target - f->origin) / f->unit;
+    measured.push_back(d.joint);
+  }
+  return measured;
+}
+
 std::vector<Eigen::Vector3d> HAnimJoints::place(
     const std::vector<std::optional<Eigen::Vector3d>>& keypoints) const {
   const Eigen::Vector3d nan = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/joint_track.h"
 #include "models/keypoint_layouts.h"
 
 namespace simcap::tracker {
@@ -29,6 +30,14 @@ class HAnimJoints {
  public:
   // Throws Error naming the HE15 joints the layout can neither give nor derive.
   explicit HAnimJoints(const KeypointLayout& layout);
+
+  // Measures the offsets again on a posed body whose H-Anim joints are known (the first frame's
+  // ground truth under --init gt, as the other families size their bodies from it): a motion
+  // capture's shoulder girdle does not sit where the neutral humanoid's does. Rules whose
+  // keypoints or joint `truth` lacks (the face points) keep the reference humanoid's offsets.
+  // Returns the joints measured again.
+  std::vector<std::string> calibrate(const KeypointLayout& layout, const JointTrack& truth,
+                                     int frame_index);
 
   // Output joints: the directly given ones in layout order, then the derived ones.
   const std::vector<std::string>& joints() const { return joints_; }

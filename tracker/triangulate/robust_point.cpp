@@ -22,7 +22,7 @@ Fit fit(const std::vector<DltView>& dlt, std::span<const KeypointObservation> vi
   DltView chosen[32];
   int n = 0;
   for (int i : subset) chosen[n++] = dlt[i];
-  const auto x = triangulate(std::span<const DltView>(chosen, n));
+  const auto x = triangulate_pixel_weighted(std::span<const DltView>(chosen, n));
   if (!x) return {};
   Fit f{*x, 0.0};
   for (int i : subset) {

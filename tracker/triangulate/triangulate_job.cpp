@@ -41,8 +41,8 @@ std::vector<PersonKeypoints> people_of(const std::vector<DetectedPerson>& detect
 
 // Where the ground truth's first frame puts the layout's joint keypoints in every camera: the
 // expectation that picks the actor out of several people.
-std::vector<PersonKeypoints> truth_expectation(const Dataset& ds, const KeypointLayout& layout) {
-  const JointTrack truth = ds.ground_truth("--init gt (finding the actor among the detections)");
+std::vector<PersonKeypoints> truth_expectation(const Dataset& ds, const KeypointLayout& layout,
+                                               const JointTrack& truth) {
   std::vector<PersonKeypoints> out(ds.cameras().size());
   if (truth.frames.empty()) return out;
   for (size_t c = 0; c < out.size(); ++c) {
@@ -132,7 +132,11 @@ TriangulationResult run_triangulation(const Dataset& ds, const TriangulateOption
   const int frame_count = frame_numbers.empty() ? 0 : frame_numbers.back() + 1;
   const Detections detections = read_detections(o.detections, names, frame_count, o.layout);
   const KeypointLayout& layout = keypoint_layout(detections.layout());
-  const HAnimJoints hanim(layout);
+  HAnimJoints hanim(layout);
+  const JointTrack truth = o.init == InitMethod::gt
+                               ? ds.ground_truth("--init gt (the actor and the body's proportions)")
+                               : JointTrack{};
+  if (!truth.frames.empty()) hanim.calibrate(layout, truth, 0);
   result.stages.read_s = since(t0);
 
   // Sequential: which person is the actor in each camera, following each camera's choice from
@@ -142,7 +146,7 @@ TriangulationResult run_triangulation(const Dataset& ds, const TriangulateOption
   std::vector<std::vector<std::vector<PersonKeypoints>>> people(n);
   std::vector<Association> chosen(n);
   std::vector<PersonKeypoints> expected = o.init == InitMethod::gt
-                                              ? truth_expectation(ds, layout)
+                                              ? truth_expectation(ds, layout, truth)
                                               : std::vector<PersonKeypoints>(cameras);
   std::ostringstream people_csv;
   people_csv << "frame,camera,people,person,how,cost_px\n";
