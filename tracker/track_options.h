@@ -11,8 +11,8 @@
 #include "tracker/common/silhouettes.h"
 #include "tracker/gomez/monocular_job.h"
 #include "tracker/moschini/moschini_job.h"
-#include "tracker/triangulate/triangulate_job.h"
 #include "tracker/track_export.h"
+#include "tracker/triangulate/triangulate_job.h"
 #include "tracker/unzueta/sik_track_job.h"
 
 namespace simcap::tracker {

@@ -70,7 +70,10 @@ struct Rule {
 // In order of preference per joint; the first whose anchors the layout has is used.
 const std::vector<Rule>& rules() {
   static const std::vector<Rule> r = {
-      {"humanoid_root", "hips -> shoulders", "left_hip", "right_hip",
+      {"humanoid_root",
+       "hips -> shoulders",
+       "left_hip",
+       "right_hip",
        {"left_shoulder", "right_shoulder"}},
       {"vc7", "shoulders -> hips", "left_shoulder", "right_shoulder", {"left_hip", "right_hip"}},
       {"skullbase", "ears -> nose", "left_ear", "right_ear", {"nose"}},
@@ -91,8 +94,11 @@ HAnimJoints::HAnimJoints(const KeypointLayout& layout) {
   const Anchors ref = reference_anchors();
   for (const Rule& r : rules()) {
     if (std::find(joints_.begin(), joints_.end(), r.joint) != joints_.end()) continue;
-    DerivedJoint d{r.joint, r.text, {keypoint_of(layout, r.left), keypoint_of(layout, r.right)},
-                   {}, Eigen::Vector3d::Zero()};
+    DerivedJoint d{r.joint,
+                   r.text,
+                   {keypoint_of(layout, r.left), keypoint_of(layout, r.right)},
+                   {},
+                   Eigen::Vector3d::Zero()};
     Eigen::Vector3d toward = Eigen::Vector3d::Zero();
     for (const std::string& t : r.toward) {
       d.toward.push_back(keypoint_of(layout, t));
@@ -115,8 +121,8 @@ HAnimJoints::HAnimJoints(const KeypointLayout& layout) {
     }
   }
   if (!missing.empty()) {
-    throw Error(std::string("keypoint layout ") + std::string(layout.title) +
-                " gives no H-Anim " + missing + " (the HE15 joints validate scores)");
+    throw Error(std::string("keypoint layout ") + std::string(layout.title) + " gives no H-Anim " +
+                missing + " (the HE15 joints validate scores)");
   }
 }
 

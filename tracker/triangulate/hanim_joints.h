@@ -44,8 +44,8 @@ class HAnimJoints {
   const std::vector<DerivedJoint>& derived() const { return derived_; }
   // The joints' positions from the keypoints' (nullopt: missing); NaN where a joint's keypoints
   // are missing.
-  std::vector<Eigen::Vector3d> place(const std::vector<std::optional<Eigen::Vector3d>>& keypoints)
-      const;
+  std::vector<Eigen::Vector3d> place(
+      const std::vector<std::optional<Eigen::Vector3d>>& keypoints) const;
 
  private:
   std::vector<std::string> joints_;

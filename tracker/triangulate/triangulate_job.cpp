@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <bit>
 #include <chrono>
-#include <cstdio>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "core/atomic_file.h"
@@ -118,8 +118,9 @@ const char* kind_name(AssociationKind k) {
 
 TriangulationResult run_triangulation(const Dataset& ds, const TriangulateOptions& o) {
   if (o.detections.empty()) {
-    throw Error("--method triangulate needs --detections FILE (COCO keypoint results JSON, an "
-                "OpenPose output folder or a CSV; see simcap track --help)");
+    throw Error(
+        "--method triangulate needs --detections FILE (COCO keypoint results JSON, an "
+        "OpenPose output folder or a CSV; see simcap track --help)");
   }
   TriangulationResult result;
   auto t0 = Clock::now();
@@ -160,8 +161,8 @@ TriangulationResult run_triangulation(const Dataset& ds, const TriangulateOption
       const int p = chosen[f].person[c];
       expected[c] = p >= 0 ? people[f][c][p] : PersonKeypoints{};
       if (people[f][c].size() < 2 && chosen[f].kind[c] == AssociationKind::tracked) continue;
-      people_csv << frame_numbers[f] << ',' << names[c] << ',' << people[f][c].size() << ','
-                 << p << ',' << kind_name(chosen[f].kind[c]) << ',';
+      people_csv << frame_numbers[f] << ',' << names[c] << ',' << people[f][c].size() << ',' << p
+                 << ',' << kind_name(chosen[f].kind[c]) << ',';
       if (p >= 0) people_csv << chosen[f].cost[c];
       people_csv << '\n';
     }
@@ -214,7 +215,8 @@ TriangulationResult run_triangulation(const Dataset& ds, const TriangulateOption
   }
   smooth(positions, o, ds.fps());
   result.track.joints = hanim.joints();
-  for (size_t f = 0; f < n; ++f) result.track.add_frame(frame_numbers[f], hanim.place(positions[f]));
+  for (size_t f = 0; f < n; ++f)
+    result.track.add_frame(frame_numbers[f], hanim.place(positions[f]));
   result.stages.smooth_s = since(t0);
   result.keypoints = keypoints_csv.str();
   result.swaps = swaps_csv.str();

@@ -6,12 +6,12 @@
 #include <optional>
 #include <string>
 
+#include "core/joint_track.h"
 #include "core/name_table.h"
 #include "models/detections.h"
 #include "tracker/common/dataset.h"
 #include "tracker/common/init_method.h"
 #include "tracker/common/track_summary.h"
-#include "core/joint_track.h"
 #include "tracker/triangulate/person_association.h"
 #include "tracker/triangulate/pose_triangulator.h"
 
@@ -22,8 +22,8 @@ inline constexpr NameTable<TemporalFilter, 2> kTemporalFilters{
     {{"none", TemporalFilter::none}, {"butterworth", TemporalFilter::butterworth}}};
 
 struct TriangulateOptions {
-  std::filesystem::path detections;          // COCO results JSON, OpenPose folder or CSV
-  std::optional<KeypointLayoutId> layout;    // inferred from the file when not given
+  std::filesystem::path detections;        // COCO results JSON, OpenPose folder or CSV
+  std::optional<KeypointLayoutId> layout;  // inferred from the file when not given
   PoseTriangulationOptions triangulation;
   AssociationOptions association;
   // Zero-phase low-pass of every keypoint's coordinates over time (butterworth.h) after gaps
@@ -43,10 +43,10 @@ struct TriangulateStages {
 };
 
 struct TriangulationResult {
-  JointTrack track;      // H-Anim joints (hanim_joints.h)
-  std::string people;    // diagnostics/people.csv
+  JointTrack track;       // H-Anim joints (hanim_joints.h)
+  std::string people;     // diagnostics/people.csv
   std::string keypoints;  // diagnostics/keypoints.csv
-  std::string swaps;     // diagnostics/swaps.csv
+  std::string swaps;      // diagnostics/swaps.csv
   int frames = 0, swaps_repaired = 0, views_excluded = 0, keypoints_missing = 0;
   TriangulateStages stages;
 };
@@ -57,7 +57,6 @@ TriangulationResult run_triangulation(const Dataset& dataset, const TriangulateO
 // Writes OUT/joints3d.csv and OUT/diagnostics/{people,keypoints,swaps}.csv. Missing or
 // unreadable detections are an Error before anything is written.
 TrackSummary track_triangulate(const std::filesystem::path& dataset,
-                               const std::filesystem::path& out,
-                               const TriangulateOptions& options);
+                               const std::filesystem::path& out, const TriangulateOptions& options);
 
 }  // namespace simcap::tracker

@@ -1,0 +1,149 @@
+// `simcap track --method triangulate` end to end on a small rendered dataset (studio4, 4 cameras,
+// 30 frames): the ground truth's COCO keypoints with 2 px of noise give the issue's MPJPE, a
+// camera whose detections are all wrong, a second person and left/right swaps do not disturb it,
+// and missing detections are refused before anything is written.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "core/atomic_file.h"
+#include "models/detections.h"
+#include "tests/support/temp_dir.h"
+
+namespace simcap {
+namespace {
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+using testing::run_simcap;
+using testing::TempDir;
+
+constexpr int kFrames = 30;
+
+class TriangulateJob : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new TempDir;
+    std::string log;
+    ASSERT_EQ(run_simcap("render " SIMCAP_SOURCE_DIR "/scenes/studio4.yaml -o " +
+                             dataset().string() + " -q --frames " + std::to_string(kFrames),
+                         &log),
+              0)
+        << log;
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+  }
+  static fs::path dataset() { return dir_->path() / "d"; }
+  static fs::path path(const std::string& name) { return dir_->path() / name; }
+
+  // gt/keypoints_coco.json as a detector's output: every keypoint in the image with score 1
+  // and Gaussian noise of `sigma_px` on x and y.
+  static Detections truth(double sigma_px, unsigned seed) {
+    const Json coco = Json::parse(read_text(dataset() / "gt" / "keypoints_coco.json"));
+    std::vector<std::string> cameras;
+    std::map<int, std::pair<int, int>> image;  // id -> frame, camera
+    for (const Json& im : coco["images"]) {
+      const std::string cam = im["camera"];
+      auto it = std::find(cameras.begin(), cameras.end(), cam);
+      if (it == cameras.end()) it = cameras.insert(cameras.end(), cam);
+      image[im["id"]] = {im["frame"], static_cast<int>(it - cameras.begin())};
+    }
+    Detections d(KeypointLayoutId::coco17, cameras, kFrames);
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> noise(0.0, sigma_px);
+    for (const Json& a : coco["annotations"]) {
+      const auto [frame, camera] = image.at(a["image_id"]);
+      DetectedPerson p;
+      const std::vector<double> k = a["keypoints"];
+      for (size_t i = 0; i + 2 < k.size(); i += 3) {
+        const bool seen = k[i + 2] > 0;
+        p.keypoints.push_back(
+            {seen ? k[i] + noise(rng) : 0, seen ? k[i + 1] + noise(rng) : 0, seen ? 1.0 : 0.0});
+      }
+      p.score = 1;
+      d.at(frame, camera).push_back(p);
+    }
+    return d;
+  }
+
+  // Tracks `detections` with `options` and returns the MPJPE validate measures, mm.
+  static double mpjpe(const Detections& detections, const std::string& name,
+                      const std::string& options = "") {
+    const fs::path file = path(name + ".json"), track = path(name), report = path(name + "_v");
+    write_coco_results(detections, file);
+    std::string log;
+    EXPECT_EQ(
+        run_simcap("track " + dataset().string() + " -o " + track.string() +
+                       " --method triangulate -q --detections " + file.string() + " " + options,
+                   &log),
+        0)
+        << log;
+    EXPECT_EQ(run_simcap("validate " + dataset().string() + " " + track.string() + " -o " +
+                             report.string() + " --no-media -q",
+                         &log),
+              0)
+        << log;
+    return Json::parse(read_text(report / "metrics.json"))["mpjpe_mm"].get<double>();
+  }
+  static TempDir* dir_;
+};
+TempDir* TriangulateJob::dir_ = nullptr;
+
+TEST_F(TriangulateJob, TruthWithTwoPixelsOfNoiseGivesTheIssuesMpjpe) {
+  EXPECT_LT(mpjpe(truth(0.0, 1), "exact"), 2.0);
+  // Per frame the noise leaves ~16 mm (1 px ~ 1 cm at these cameras' 3-5 m); Pose2Sim's
+  // zero-phase low-pass takes it under the issue's 10 mm.
+  EXPECT_LE(mpjpe(truth(2.0, 1), "noisy", "--smooth butterworth"), 10.0);
+}
+
+TEST_F(TriangulateJob, AWrongCameraASecondPersonAndSwapsDoNotMatter) {
+  const Detections clean = truth(2.0, 2);
+  const double reference = mpjpe(clean, "clean");
+  // Camera 2's detections all 70 px off: its views are excluded.
+  Detections shifted = clean;
+  for (int f = 0; f < kFrames; ++f) {
+    for (DetectedPerson& p : shifted.at(f, 2)) {
+      for (DetectedKeypoint& k : p.keypoints) k.x += 60, k.y -= 35;
+    }
+  }
+  EXPECT_LT(mpjpe(shifted, "shifted"), reference + 6.0);
+  // A second, larger person (the actor's detections moved and scaled) listed first in every
+  // image, and the knees swapped in camera 1 on every other frame.
+  Detections crowded = clean;
+  for (int f = 0; f < kFrames; ++f) {
+    for (int c = 0; c < 4; ++c) {
+      auto& people = crowded.at(f, c);
+      if (people.empty()) continue;
+      DetectedPerson other = people[0];
+      for (DetectedKeypoint& k : other.keypoints) k.x = 1.2 * k.x - 150, k.y = 1.2 * k.y - 40;
+      people.insert(people.begin(), other);
+      if (c == 1 && f % 2 == 0) std::swap(people[1].keypoints[13], people[1].keypoints[14]);
+    }
+  }
+  EXPECT_LT(mpjpe(crowded, "crowded"), reference + 1.0);
+  const std::string people = read_text(path("crowded") / "diagnostics" / "people.csv");
+  EXPECT_NE(people.find("0,cam00,2,1,"), std::string::npos) << people;
+  const std::string swaps = read_text(path("crowded") / "diagnostics" / "swaps.csv");
+  EXPECT_NE(swaps.find("0,cam01,left_knee,right_knee"), std::string::npos) << swaps;
+}
+
+TEST_F(TriangulateJob, MissingDetectionsAreRefusedBeforeAnythingIsWritten) {
+  std::string log;
+  const fs::path track = path("refused");
+  EXPECT_EQ(run_simcap("track " + dataset().string() + " -o " + track.string() +
+                           " --method triangulate -q",
+                       &log),
+            1);
+  EXPECT_NE(log.find("--detections"), std::string::npos) << log;
+  EXPECT_EQ(run_simcap("track " + dataset().string() + " -o " + track.string() +
+                           " --method triangulate -q --detections " + path("none.json").string(),
+                       &log),
+            1);
+  EXPECT_NE(log.find("none.json"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(track));
+}
+
+}  // namespace
+}  // namespace simcap
