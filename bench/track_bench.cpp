@@ -1,6 +1,7 @@
 #include "bench/track_bench.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -10,9 +11,11 @@
 #include <vector>
 
 #include "core/error.h"
+#include "models/detections.h"
 #include "tracker/common/dataset.h"
 #include "tracker/common/track_folder.h"
 #include "tracker/registry.h"
+#include "tracker/triangulate/triangulate_job.h"
 
 namespace simcap {
 namespace fs = std::filesystem;
@@ -82,6 +85,61 @@ TrackSummary run_family(const fs::path& dataset, const TrackBenchOptions& o) {
   return family.run(dataset, folder.path(), options);
 }
 
+// Triangulation: its stages timed inside run_triangulation; the baseline reads and parses the
+// detections file alone (what the method reads instead of images).
+void run_triangulate_benchmark(const fs::path& dataset, const TrackBenchOptions& o,
+                               std::FILE* out) {
+  TriangulateOptions t = o.track.triangulate;
+  t.init = o.track.init;
+  t.actor = o.track.actor;
+  t.max_frames = o.frames;
+  t.quiet = true;
+  const Dataset ds(dataset, t.actor);
+  std::vector<std::string> cameras;
+  for (const Camera& c : ds.cameras()) cameras.push_back(c.name);
+  std::vector<double> fps, core_fps, read_fps;
+  TriangulateStages sum;
+  int frames = 0;
+  for (int r = 0; r < o.repeat; ++r) {
+    const auto t0 = Clock::now();
+    const TriangulationResult result = run_triangulation(ds, t);
+    const double s = std::chrono::duration<double>(Clock::now() - t0).count();
+    frames = result.frames;
+    const TriangulateStages& st = result.stages;
+    fps.push_back(frames / std::max(s, 1e-9));
+    core_fps.push_back(frames / std::max(st.associate_s + st.triangulate_s + st.smooth_s, 1e-9));
+    sum.read_s += st.read_s;
+    sum.associate_s += st.associate_s;
+    sum.triangulate_s += st.triangulate_s;
+    sum.smooth_s += st.smooth_s;
+    const auto t1 = Clock::now();
+    const Detections d =
+        read_detections(t.detections, cameras, ds.frames("rgb").back() + 1, t.layout);
+    read_fps.push_back(d.frames() /
+                       std::max(std::chrono::duration<double>(Clock::now() - t1).count(), 1e-9));
+  }
+  std::fprintf(out, "dataset %s: %d cameras, %d frames, method triangulate, %d threads, %d runs\n",
+               dataset.string().c_str(), ds.camera_count(), frames,
+               tbb::this_task_arena::max_concurrency(), o.repeat);
+  std::fprintf(out, "%-26s %10s %12s\n", "stage (per frame)", "ms", "frames/s");
+  const double n = static_cast<double>(std::max(1, frames)) * o.repeat;
+  const std::pair<const char*, double> stages[] = {{"read detections", sum.read_s},
+                                                   {"associate people", sum.associate_s},
+                                                   {"triangulate (parallel)", sum.triangulate_s},
+                                                   {"fill gaps, filter, joints", sum.smooth_s}};
+  for (const auto& [name, total] : stages) {
+    std::fprintf(out, "%-26s %10.4f %12.1f\n", name, 1000.0 * total / n, n / std::max(total, 1e-9));
+  }
+  std::fprintf(out, "triangulation without reading: %.1f frames/s (median)\n", median(core_fps));
+  std::vector<double> ratios;
+  for (size_t r = 0; r < fps.size(); ++r) ratios.push_back(fps[r] / read_fps[r]);
+  std::fprintf(out,
+               "pipeline: %.1f frames/s; baseline (reading the detections alone): %.1f frames/s; "
+               "tracker/baseline = %.3f (medians)\n",
+               median(fps), median(read_fps), median(ratios));
+  std::fprintf(out, "frames_per_s=%.1f\n", median(fps));
+}
+
 void print_stages(const StageTimes& t, const MoschiniOptions& m, std::FILE* out) {
   const double n = static_cast<double>(std::max(1L, t.observed));
   std::fprintf(out, "mean hull %.0f voxels, %.0f centerline points per frame\n", t.voxels / n,
@@ -112,6 +170,10 @@ void run_track_benchmark(const fs::path& dataset, const TrackBenchOptions& given
   if (!missing.empty()) {
     throw Error(dataset.string() + ": " + missing + " for --method " +
                 std::string(name_of(kTrackMethods, o.track.method)));
+  }
+  if (o.track.method == TrackMethod::triangulate) {
+    run_triangulate_benchmark(dataset, o, out);
+    return;
   }
   const bool moschini = o.track.method == TrackMethod::moschini;
   // The baseline decodes what the tracker's first stage reads.

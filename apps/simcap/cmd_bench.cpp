@@ -60,9 +60,11 @@ void add_bench_track(CLI::App& bench, Action& action) {
       "Examples:\n"
       "  simcap bench track out/studio4\n"
       "  simcap bench track out/studio4 --silhouettes bgsub --repeat 5\n"
+      "  simcap bench track out/studio4 --method triangulate --detections det.json\n"
       "Stage times are measured inside the running pipeline (perception runs on several frames\n"
       "at once). The baseline decodes the images the tracker reads, on the same threads, between\n"
-      "the runs. The last line is frames_per_s=<median overall rate of the runs>.");
+      "the runs (triangulate: it reads and parses the detections file alone). The last line is\n"
+      "frames_per_s=<median overall rate of the runs>.");
   cmd->callback([&action] {
     action = [] {
       run_track_benchmark(dataset, options, stdout);
