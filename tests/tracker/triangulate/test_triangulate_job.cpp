@@ -5,11 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
-#include <random>
 
 #include "core/atomic_file.h"
 #include "models/detections.h"
 #include "tests/support/temp_dir.h"
+#include "tracker/common/dataset.h"
 
 namespace simcap {
 namespace {
@@ -38,34 +38,20 @@ class TriangulateJob : public ::testing::Test {
   static fs::path dataset() { return dir_->path() / "d"; }
   static fs::path path(const std::string& name) { return dir_->path() / name; }
 
-  // gt/keypoints_coco.json as a detector's output: every keypoint in the image with score 1
-  // and Gaussian noise of `sigma_px` on x and y.
+  // `simcap detections`: the true COCO-17 keypoints with Gaussian noise of `sigma_px`.
   static Detections truth(double sigma_px, unsigned seed) {
-    const Json coco = Json::parse(read_text(dataset() / "gt" / "keypoints_coco.json"));
+    const fs::path file = path("truth_" + std::to_string(seed) + ".json");
+    std::string log;
+    EXPECT_EQ(
+        run_simcap("detections " + dataset().string() + " -q -o " + file.string() + " --noise-px " +
+                       std::to_string(sigma_px) + " --seed " + std::to_string(seed),
+                   &log),
+        0)
+        << log;
     std::vector<std::string> cameras;
-    std::map<int, std::pair<int, int>> image;  // id -> frame, camera
-    for (const Json& im : coco["images"]) {
-      const std::string cam = im["camera"];
-      auto it = std::find(cameras.begin(), cameras.end(), cam);
-      if (it == cameras.end()) it = cameras.insert(cameras.end(), cam);
-      image[im["id"]] = {im["frame"], static_cast<int>(it - cameras.begin())};
-    }
-    Detections d(KeypointLayoutId::coco17, cameras, kFrames);
-    std::mt19937 rng(seed);
-    std::normal_distribution<double> noise(0.0, sigma_px);
-    for (const Json& a : coco["annotations"]) {
-      const auto [frame, camera] = image.at(a["image_id"]);
-      DetectedPerson p;
-      const std::vector<double> k = a["keypoints"];
-      for (size_t i = 0; i + 2 < k.size(); i += 3) {
-        const bool seen = k[i + 2] > 0;
-        p.keypoints.push_back(
-            {seen ? k[i] + noise(rng) : 0, seen ? k[i + 1] + noise(rng) : 0, seen ? 1.0 : 0.0});
-      }
-      p.score = 1;
-      d.at(frame, camera).push_back(p);
-    }
-    return d;
+    const tracker::Dataset ds(dataset());
+    for (const Camera& c : ds.cameras()) cameras.push_back(c.name);
+    return read_detections(file, cameras, kFrames);
   }
 
   // Tracks `detections` with `options` and returns the MPJPE validate measures, mm.
@@ -101,14 +87,15 @@ TEST_F(TriangulateJob, TruthWithTwoPixelsOfNoiseGivesTheIssuesMpjpe) {
 TEST_F(TriangulateJob, AWrongCameraASecondPersonAndSwapsDoNotMatter) {
   const Detections clean = truth(2.0, 2);
   const double reference = mpjpe(clean, "clean");
-  // Camera 2's detections all 70 px off: its views are excluded.
-  Detections shifted = clean;
+  // Camera 2's detections all 70 px off: its views are excluded, as if it had seen nobody.
+  Detections shifted = clean, without = clean;
   for (int f = 0; f < kFrames; ++f) {
     for (DetectedPerson& p : shifted.at(f, 2)) {
       for (DetectedKeypoint& k : p.keypoints) k.x += 60, k.y -= 35;
     }
+    without.at(f, 2).clear();
   }
-  EXPECT_LT(mpjpe(shifted, "shifted"), reference + 6.0);
+  EXPECT_NEAR(mpjpe(shifted, "shifted"), mpjpe(without, "without"), 0.5);
   // A second, larger person (the actor's detections moved and scaled) listed first in every
   // image, and the knees swapped in camera 1 on every other frame.
   Detections crowded = clean;
