@@ -32,11 +32,13 @@ void add_track(CLI::App& app, Action& action) {
       "  simcap track out/gestures -o out/track_depth --method sik --effectors depth --init auto\n"
       "  simcap track out/monocular -o out/track_mono --method monocular --particles 200\n"
       "  simcap track out/studio4 -o out/track --export bvh,x3d,bap\n"
+      "  simcap track out/studio4 -o out/tri --method triangulate --detections det.json\n"
       "  simcap track out/studio4 -o out/first30 --frames 30\n"
       "Writes TRACK/joints3d.csv (frame,joint,x,y,z; the HE15 joints in H-Anim names) and\n"
       "TRACK/diagnostics/ (moschini: centerline.csv, timings.csv, reinitializations.csv,\n"
       "body_dimensions.csv, for subtracted silhouettes silhouette_iou.csv, and with --inspect\n"
-      "inspect/FRAME/camNN.png and hull.csv; each family's notes list its own). TRACK is written\n"
+      "inspect/FRAME/camNN.png and hull.csv; triangulate: people.csv, keypoints.csv, swaps.csv;\n"
+      "each family's notes list its own). TRACK is written\n"
       "whole or not at all: a run that fails leaves a previous TRACK as it was.");
   cmd->callback([&action, options, dataset, out] {
     action = [options, dataset, out] {

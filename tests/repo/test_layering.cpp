@@ -26,13 +26,14 @@ const std::map<std::string, std::vector<std::string>>& allowed() {
       {"tracker/moschini", {"core", "models", "tracker/common"}},
       {"tracker/unzueta", {"core", "models", "tracker/common"}},
       {"tracker/gomez", {"core", "models", "tracker/common"}},
+      {"tracker/triangulate", {"core", "models", "tracker/common"}},
       {"tracker",
-       {"core", "models", "tracker/common", "tracker/moschini", "tracker/unzueta",
-        "tracker/gomez"}},
+       {"core", "models", "tracker/common", "tracker/moschini", "tracker/unzueta", "tracker/gomez",
+        "tracker/triangulate"}},
       {"validate", {"core", "models"}},
       {"bench",
        {"core", "models", "scenes", "sim", "collect", "tracker", "tracker/common",
-        "tracker/moschini", "tracker/unzueta", "tracker/gomez"}},
+        "tracker/moschini", "tracker/unzueta", "tracker/gomez", "tracker/triangulate"}},
   };
   return rules;
 }

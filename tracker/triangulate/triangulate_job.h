@@ -27,8 +27,8 @@ struct TriangulateOptions {
   PoseTriangulationOptions triangulation;
   AssociationOptions association;
   // Zero-phase low-pass of every keypoint's coordinates over time (butterworth.h) after gaps
-  // are filled; none by default (TRIANGULATE.md measures both on the suite).
-  TemporalFilter filter = TemporalFilter::none;
+  // are filled; on by default: 37% lower MPJPE on every clip of the suite (TRIANGULATE.md).
+  TemporalFilter filter = TemporalFilter::butterworth;
   double cutoff_hz = 6.0;  // Pose2Sim's default
   // gt: the actor is found in the first frame where the ground truth projects; automatic: the
   // most prominent person detected (person_association.h).

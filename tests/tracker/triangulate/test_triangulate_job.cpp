@@ -8,39 +8,36 @@
 
 #include "core/atomic_file.h"
 #include "models/detections.h"
-#include "tests/support/temp_dir.h"
+#include "tests/support/rendered_dataset.h"
 #include "tracker/common/dataset.h"
 
 namespace simcap {
 namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
+using testing::RenderedDataset;
 using testing::run_simcap;
-using testing::TempDir;
 
 constexpr int kFrames = 30;
 
 class TriangulateJob : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new TempDir;
-    std::string log;
-    ASSERT_EQ(run_simcap("render " SIMCAP_SOURCE_DIR "/scenes/studio4.yaml -o " +
-                             dataset().string() + " -q --frames " + std::to_string(kFrames),
-                         &log),
-              0)
-        << log;
+    data_ = new RenderedDataset(SIMCAP_SOURCE_DIR "/scenes/studio4.yaml",
+                                "--frames " + std::to_string(kFrames));
+    ASSERT_TRUE(data_->ok()) << data_->log();
   }
   static void TearDownTestSuite() {
-    delete dir_;
-    dir_ = nullptr;
+    delete data_;
+    data_ = nullptr;
   }
-  static fs::path dataset() { return dir_->path() / "d"; }
-  static fs::path path(const std::string& name) { return dir_->path() / name; }
+  static fs::path dataset() { return data_->path(); }
+  static fs::path path(const std::string& name) { return data_->file(name); }
 
   // `simcap detections`: the true COCO-17 keypoints with Gaussian noise of `sigma_px`.
   static Detections truth(double sigma_px, unsigned seed) {
-    const fs::path file = path("truth_" + std::to_string(seed) + ".json");
+    const fs::path file =
+        path("truth_" + std::to_string(sigma_px) + "_" + std::to_string(seed) + ".json");
     std::string log;
     EXPECT_EQ(
         run_simcap("detections " + dataset().string() + " -q -o " + file.string() + " --noise-px " +
@@ -73,9 +70,9 @@ class TriangulateJob : public ::testing::Test {
         << log;
     return Json::parse(read_text(report / "metrics.json"))["mpjpe_mm"].get<double>();
   }
-  static TempDir* dir_;
+  static RenderedDataset* data_;
 };
-TempDir* TriangulateJob::dir_ = nullptr;
+RenderedDataset* TriangulateJob::data_ = nullptr;
 
 TEST_F(TriangulateJob, TruthWithTwoPixelsOfNoiseGivesTheIssuesMpjpe) {
   EXPECT_LT(mpjpe(truth(0.0, 1), "exact"), 2.0);
