@@ -15,11 +15,11 @@
 #include "tracker/common/dataset.h"
 #include "tracker/common/mask_box.h"
 #include "tracker/common/png_decoder.h"
+#include "tracker/common/triangulation.h"
 #include "tracker/unzueta/depth_lookup.h"
 #include "tracker/unzueta/part_model.h"
 #include "tracker/unzueta/sik.h"
 #include "tracker/unzueta/sik_track_job.h"
-#include "tracker/common/triangulation.h"
 
 namespace simcap::tracker {
 namespace fs = std::filesystem;

@@ -11,9 +11,9 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "tracker/common/triangulation.h"
 #include "tracker/unzueta/cfof.h"
 #include "tracker/unzueta/point_kalman.h"
-#include "tracker/common/triangulation.h"
 
 namespace simcap::tracker {
 namespace {
