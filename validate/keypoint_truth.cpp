@@ -93,6 +93,10 @@ void read_coco_truth(KeypointTruth& truth, const Json& coco, const fs::path& fil
       throw_input_error(file, 0, field + ".actor", "not an actor of scene.yaml");
     const Json& kp = member(ann, "keypoints", file, field);
     const Json& area = member(ann, "area", file, field);
+    const Json& box = member(ann, "bbox", file, field);
+    if (!box.is_array() || box.size() != 4 || !box[3].is_number()) {
+      throw_input_error(file, 0, field + ".bbox", "expected [x, y, width, height]");
+    }
     if (!kp.is_array() || kp.size() != 51 ||
         !std::all_of(kp.begin(), kp.end(), [](const Json& v) { return v.is_number(); })) {
       throw_input_error(file, 0, field + ".keypoints", "expected 51 numbers (17 keypoints x 3)");
@@ -107,6 +111,7 @@ void read_coco_truth(KeypointTruth& truth, const Json& coco, const fs::path& fil
         truth.at(image->second.first, image->second.second, static_cast<int>(a - actors.begin()));
     view.annotated = true;
     view.area = area.get<double>();
+    view.box_height = box[3].get<double>();
     for (int k = 0; k < layout.size(); ++k) {
       const LayoutKeypoint& lk = layout.keypoints[k];
       if (lk.truth != TruthKind::coco17_point) continue;
@@ -185,7 +190,7 @@ KeypointTruth::KeypointTruth(KeypointLayoutId layout, std::vector<std::string> c
     : layout_(layout), cameras_(std::move(cameras)), actors_(std::move(actors)), frames_(frames) {
   views_.resize(
       static_cast<size_t>(frames_) * cameras_.size() * actors_.size(),
-      ActorView{false, 0.0,
+      ActorView{false, 0.0, 0.0,
                 std::vector<TruthKeypoint>(static_cast<size_t>(keypoint_layout(layout).size()))});
 }
 
