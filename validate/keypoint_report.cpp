@@ -1,5 +1,6 @@
 #include "validate/keypoint_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -95,6 +96,10 @@ std::string class_chart(const KeypointScores& s, const std::string& title,
     chart.labels.emplace_back(visibility_class_name(v));
     chart.values.push_back(value(g));
     chart.annotations.push_back(std::to_string(g.keypoints) + " keypoints");
+  }
+  // An axis over nothing but zeros has no scale to show.
+  if (std::none_of(chart.values.begin(), chart.values.end(), [](double v) { return v > 0; })) {
+    return "<p>" + xml_escape(title) + ": 0 in every class.</p>\n";
   }
   return bar_chart_svg(chart);
 }
