@@ -45,9 +45,15 @@ const Json& member(const Json& object, const char* name, const fs::path& file,
   return object[name];
 }
 
+const Json& array_member(const Json& object, const char* name, const fs::path& file) {
+  const Json& a = member(object, name, file, "");
+  if (!a.is_array()) throw_input_error(file, 0, name, "expected an array");
+  return a;
+}
+
 int frame_count(const Json& coco, const fs::path& file) {
   int last = -1;
-  const Json& images = member(coco, "images", file, "");
+  const Json& images = array_member(coco, "images", file);
   for (size_t i = 0; i < images.size(); ++i) {
     const Json& f = member(images[i], "frame", file, "images[" + std::to_string(i) + "]");
     if (!f.is_number_integer() || f.get<long>() < 0 || f.get<long>() > 10'000'000) {
@@ -66,7 +72,7 @@ void read_coco_truth(KeypointTruth& truth, const Json& coco, const fs::path& fil
   const KeypointLayout& layout = keypoint_layout(truth.layout());
   const KeypointLayout& coco17 = keypoint_layout(KeypointLayoutId::coco17);
   std::map<long, std::pair<int, int>> images;  // id -> (frame, camera)
-  const Json& list = member(coco, "images", file, "");
+  const Json& list = array_member(coco, "images", file);
   for (size_t i = 0; i < list.size(); ++i) {
     const std::string field = "images[" + std::to_string(i) + "]";
     const Json& cam = member(list[i], "camera", file, field);
@@ -78,7 +84,7 @@ void read_coco_truth(KeypointTruth& truth, const Json& coco, const fs::path& fil
     if (!id.is_number_integer()) throw_input_error(file, 0, field + ".id", "expected an integer");
     images[id.get<long>()] = {list[i]["frame"].get<int>(), static_cast<int>(c - cameras.begin())};
   }
-  const Json& annotations = member(coco, "annotations", file, "");
+  const Json& annotations = array_member(coco, "annotations", file);
   for (size_t i = 0; i < annotations.size(); ++i) {
     const std::string field = "annotations[" + std::to_string(i) + "]";
     const Json& ann = annotations[i];
@@ -93,6 +99,10 @@ void read_coco_truth(KeypointTruth& truth, const Json& coco, const fs::path& fil
       throw_input_error(file, 0, field + ".actor", "not an actor of scene.yaml");
     const Json& kp = member(ann, "keypoints", file, field);
     const Json& area = member(ann, "area", file, field);
+    const Json& box = member(ann, "bbox", file, field);
+    if (!box.is_array() || box.size() != 4 || !box[3].is_number()) {
+      throw_input_error(file, 0, field + ".bbox", "expected [x, y, width, height]");
+    }
     if (!kp.is_array() || kp.size() != 51 ||
         !std::all_of(kp.begin(), kp.end(), [](const Json& v) { return v.is_number(); })) {
       throw_input_error(file, 0, field + ".keypoints", "expected 51 numbers (17 keypoints x 3)");
@@ -107,6 +117,7 @@ void read_coco_truth(KeypointTruth& truth, const Json& coco, const fs::path& fil
         truth.at(image->second.first, image->second.second, static_cast<int>(a - actors.begin()));
     view.annotated = true;
     view.area = area.get<double>();
+    view.box_height = box[3].get<double>();
     for (int k = 0; k < layout.size(); ++k) {
       const LayoutKeypoint& lk = layout.keypoints[k];
       if (lk.truth != TruthKind::coco17_point) continue;
@@ -185,7 +196,7 @@ KeypointTruth::KeypointTruth(KeypointLayoutId layout, std::vector<std::string> c
     : layout_(layout), cameras_(std::move(cameras)), actors_(std::move(actors)), frames_(frames) {
   views_.resize(
       static_cast<size_t>(frames_) * cameras_.size() * actors_.size(),
-      ActorView{false, 0.0,
+      ActorView{false, 0.0, 0.0,
                 std::vector<TruthKeypoint>(static_cast<size_t>(keypoint_layout(layout).size()))});
 }
 

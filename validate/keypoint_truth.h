@@ -24,6 +24,7 @@ struct TruthKeypoint {
 struct ActorView {
   bool annotated = false;  // the actor has pixels in the image (an entry of keypoints_coco.json)
   double area = 0;         // its mask pixels (COCO's area, the OKS scale s^2)
+  double box_height = 0;   // its mask box's height in pixels (the body height of 2D PCK)
   std::vector<TruthKeypoint> keypoints;  // the layout's order
 };
 

@@ -10,15 +10,11 @@ namespace simcap {
 namespace {
 
 std::string fmt(const char* format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
+  return html_number(format, v);
 }
 
 std::string row(const std::vector<std::string>& cells, const char* tag = "td") {
-  std::string s = "<tr>";
-  for (const auto& c : cells) s += std::string("<") + tag + ">" + c + "</" + tag + ">";
-  return s + "</tr>\n";
+  return html_row(cells, tag);
 }
 
 std::string summary_table(const Evaluation& ev) {
@@ -167,18 +163,36 @@ std::string base64_encode(const std::vector<unsigned char>& bytes) {
   return out;
 }
 
+std::string html_row(const std::vector<std::string>& cells, const char* tag) {
+  std::string s = "<tr>";
+  for (const auto& c : cells) s += std::string("<") + tag + ">" + c + "</" + tag + ">";
+  return s + "</tr>\n";
+}
+
+std::string html_number(const char* format, double v) {
+  if (!std::isfinite(v)) return "&ndash;";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+std::string report_page_start(const std::string& title) {
+  return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" +
+         xml_escape(title) +
+         "</title>\n<style>\n"
+         "body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}\n"
+         "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:3px 8px;"
+         "text-align:left}\n.grid{display:flex;flex-wrap:wrap;gap:8px}figure{margin:0}"
+         "figure img{width:340px}video{max-width:100%}\n</style>\n</head>\n<body>\n<h1>" +
+         xml_escape(title) + "</h1>\n";
+}
+
 std::string report_html(const Evaluation& ev, const ReportContent& c) {
-  std::string s =
-      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-      "<title>simcap validation report</title>\n<style>\n"
-      "body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}\n"
-      "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #ccc;padding:3px 8px;"
-      "text-align:left}\n.grid{display:flex;flex-wrap:wrap;gap:8px}figure{margin:0}"
-      "figure img{width:340px}video{max-width:100%}\n</style>\n</head>\n<body>\n"
-      "<h1>simcap validation report</h1>\n<p>Dataset: <code>" +
-      xml_escape(c.dataset) + "</code><br>Track: <code>" + xml_escape(c.track) +
-      "</code></p>\n<h2>Summary</h2>\n" + summary_table(ev) + "<h2>Error over time</h2>\n" +
-      per_frame_plot(ev) + "<h2>Error per joint</h2>\n" + per_joint_section(ev);
+  std::string s = report_page_start("simcap validation report") + "<p>Dataset: <code>" +
+                  xml_escape(c.dataset) + "</code><br>Track: <code>" + xml_escape(c.track) +
+                  "</code></p>\n<h2>Summary</h2>\n" + summary_table(ev) +
+                  "<h2>Error over time</h2>\n" + per_frame_plot(ev) + "<h2>Error per joint</h2>\n" +
+                  per_joint_section(ev);
   if (!ev.by_visible_cameras.empty()) {
     s += "<h2>Error against visibility</h2>\n<p>Each joint in each frame is grouped by the number "
          "of cameras that see it and by its worst occlusion over the cameras (from "

@@ -1,9 +1,11 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "apps/simcap/choice_option.h"
 #include "apps/simcap/commands.h"
 #include "apps/simcap/fail_above.h"
 #include "apps/simcap/option_groups.h"
+#include "validate/keypoint_report.h"
 #include "validate/summary_text.h"
 #include "validate/validate_job.h"
 
@@ -11,12 +13,31 @@ namespace simcap::cli {
 namespace {
 
 struct ValidateArgs {
-  std::filesystem::path dataset, track, out;
+  std::filesystem::path dataset, track, out, detections;
   ValidateOptions options;
   ScoringOptions scoring;
+  DetectionValidateOptions detection;
+  KeypointLayoutId layout = KeypointLayoutId::coco17;
+  bool layout_given = false;
 };
 
+int run_detection_validate(const ValidateArgs& args) {
+  DetectionValidateOptions options = args.detection;
+  if (args.layout_given) options.layout = args.layout;
+  const DetectionValidation v =
+      validate_detections(args.dataset, args.detections, args.out, options);
+  std::printf("simcap validate: %s against %s\n%s", args.detections.string().c_str(),
+              args.dataset.string().c_str(), keypoint_summary_text(v.scores).c_str());
+  std::printf("report: %s\nscores: %s, %s\n", v.html.string().c_str(), v.json.string().c_str(),
+              v.csv.string().c_str());
+  return 0;
+}
+
 int run_validate(const ValidateArgs& args) {
+  if (args.track.empty() == args.detections.empty()) {
+    throw CLI::ValidationError("validate", "give either TRACK or --detections FILE");
+  }
+  if (!args.detections.empty()) return run_detection_validate(args);
   ValidateOptions options = args.options;
   args.scoring.apply(options);
   const ValidateSummary s = validate_dataset(args.dataset, args.track, args.out, options);
@@ -36,8 +57,22 @@ void add_validate(CLI::App& app, Action& action) {
       "Score a tracker's output against a dataset's ground truth (metrics.json + report.html)");
   static ValidateArgs args;
   cmd->add_option("dataset", args.dataset, "Dataset folder written by simcap render")->required();
-  cmd->add_option("track", args.track, "Track folder written by simcap track (joints3d.csv)")
-      ->required();
+  cmd->add_option("track", args.track, "Track folder written by simcap track (joints3d.csv)");
+  auto* detections = cmd->add_option(
+      "--detections", args.detections,
+      "Score a 2D keypoint detector instead of a track: COCO results .json, OpenPose folder or "
+      ".csv (validate/README.md)");
+  add_choice(cmd, "--layout", args.layout, kKeypointLayouts,
+             "Keypoint layout of --detections (default: from the keypoint count or names)")
+      ->each([&](const std::string&) { args.layout_given = true; })
+      ->needs(detections);
+  cmd->add_option("--actor", args.detection.actor,
+                  "With --detections: the actor scored (default: the first)")
+      ->needs(detections);
+  cmd->add_option("--min-keypoint-score", args.detection.min_keypoint_score,
+                  "With --detections: a keypoint is detected when its score is above this")
+      ->capture_default_str()
+      ->needs(detections);
   cmd->add_option("-o,--output", args.out, "Report folder (metrics.json, report.html, MP4)")
       ->required();
   add_scoring_options(cmd, args.options, args.scoring);
@@ -54,7 +89,11 @@ void add_validate(CLI::App& app, Action& action) {
   cmd->add_flag("-q,--quiet", args.options.quiet, "No progress on stderr");
   cmd->footer(
       "Exit status: 0 ok, 1 bad input, 4 MPJPE above --fail-above.\n"
-      "Example:\n  simcap validate out/studio4 out/track -o out/report --fail-above 40");
+      "With --detections the report is of 2D keypoints: COCO AP, PCK, pixel errors, misses and\n"
+      "left/right swaps per keypoint and visibility class (keypoints2d.json, .csv, report.html).\n"
+      "Examples:\n  simcap validate out/studio4 out/track -o out/report --fail-above 40\n"
+      "  simcap detections out/studio4 -o det.json --noise-px 2\n"
+      "  simcap validate out/studio4 --detections det.json -o out/report2d");
   cmd->callback([&action] { action = [] { return run_validate(args); }; });
 }
 

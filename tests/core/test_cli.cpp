@@ -12,7 +12,7 @@ TEST(Cli, HelpListsEveryCommand) {
   std::string out;
   EXPECT_EQ(run_simcap("--help", &out), 0);
   for (const char* cmd : {"render", "track", "validate", "loop", "demo", "stress", "bench", "model",
-                          "motion", "ik-eval", "version"}) {
+                          "motion", "ik-eval", "detections", "version"}) {
     EXPECT_NE(out.find(cmd), std::string::npos) << cmd;
     std::string sub;
     EXPECT_EQ(run_simcap(std::string(cmd) + " --help", &sub), 0) << cmd;

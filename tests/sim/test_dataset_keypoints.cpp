@@ -12,6 +12,7 @@
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "core/image_io.h"
+#include "tests/support/occluders_dataset.h"
 #include "tests/support/temp_dir.h"
 
 namespace simcap {
@@ -21,30 +22,12 @@ using Json = nlohmann::json;
 using testing::run_simcap;
 using testing::TempDir;
 
-constexpr int kFrames = 4;
+constexpr int kFrames = testing::kOccludersFrames;
 
-// The occluders scene at a quarter of the pixels: pillars and a table hide limbs, so every
-// visibility flag occurs.
 class KeypointDataset : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    dir_ = new TempDir;
-    std::string log;
-    ASSERT_EQ(run_simcap("render " SIMCAP_SOURCE_DIR "/scenes/occluders.yaml -o " +
-                             dataset().string() + " -q --set 'rig.resolution=[320,240]' " +
-                             "--set render.first_frame=100 --frames " + std::to_string(kFrames),
-                         &log),
-              0)
-        << log;
-  }
-  static void TearDownTestSuite() {
-    delete dir_;
-    dir_ = nullptr;
-  }
-  static fs::path dataset() { return dir_->path() / "d"; }
-  static TempDir* dir_;
+  static fs::path dataset() { return testing::occluders_dataset(); }
 };
-TempDir* KeypointDataset::dir_ = nullptr;
 
 struct Row2d {
   double u, v;

@@ -9,6 +9,7 @@
 #include "core/atomic_file.h"
 #include "models/detections.h"
 #include "tests/support/error_of.h"
+#include "tests/support/occluders_dataset.h"
 #include "tests/support/temp_dir.h"
 #include "validate/noisy_detections.h"
 
@@ -18,28 +19,10 @@ namespace fs = std::filesystem;
 using testing::run_simcap;
 using testing::TempDir;
 
-// The occluders scene at a quarter of the pixels: pillars and a table hide limbs.
 class NoisyDetections : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    dir_ = new TempDir;
-    std::string log;
-    ASSERT_EQ(
-        run_simcap("render " SIMCAP_SOURCE_DIR "/scenes/occluders.yaml -o " + dataset().string() +
-                       " -q --set 'rig.resolution=[320,240]' --set render.first_frame=100 "
-                       "--frames 4",
-                   &log),
-        0)
-        << log;
-  }
-  static void TearDownTestSuite() {
-    delete dir_;
-    dir_ = nullptr;
-  }
-  static fs::path dataset() { return dir_->path() / "d"; }
-  static TempDir* dir_;
+  static fs::path dataset() { return testing::occluders_dataset(); }
 };
-TempDir* NoisyDetections::dir_ = nullptr;
 
 TEST_F(NoisyDetections, WithoutNoiseTheTruth) {
   const KeypointTruth truth = read_keypoint_truth(dataset(), KeypointLayoutId::coco17);
