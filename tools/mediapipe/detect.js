@@ -111,7 +111,8 @@ function parseArgs(argv) {
   return options;
 }
 
-// The images to detect on, camera after camera, each camera's frames in order, from meta.json.
+// The images to detect on, camera after camera, each camera's frames in order, and the frame
+// rate, from meta.json.
 function listImages(options) {
   const metaPath = path.join(options.dataset, 'meta.json');
   if (!fs.existsSync(options.dataset)) throw new Error(`${options.dataset}: no such dataset folder`);
@@ -132,6 +133,8 @@ function listImages(options) {
   if (!Number.isInteger(frames) || frames < 1) {
     throw new Error(`${metaPath}: field "frame_count": expected a whole number >= 1`);
   }
+  const fps = meta.fps;
+  if (typeof fps !== 'number' || !(fps > 0)) throw new Error(`${metaPath}: field "fps": expected a number > 0`);
   if (meta.complete === false) {
     throw new Error(`${metaPath}: the render is not complete ("complete": false); finish it with \`simcap render --resume\``);
   }
@@ -149,7 +152,7 @@ function listImages(options) {
       images.push({imageId: 1 + frame * cameras.length + index, fileName, file, frame, camera});
     }
   });
-  return images;
+  return {images, fps};
 }
 
 // Serves the page, the pose solution's files and the dataset's images; nothing else.
@@ -234,7 +237,7 @@ function loadPuppeteer() {
   }
 }
 
-async function detect(options, images, progress) {
+async function detect(options, images, fps, progress) {
   const puppeteer = loadPuppeteer();
   if (!fs.existsSync(options.chromium)) {
     throw new Error(`${options.chromium}: chromium not found; ${kSetupHint} (or pass --chromium PATH)`);
@@ -300,13 +303,16 @@ async function detect(options, images, progress) {
     checkFailures();
     const initSeconds = Number(process.hrtime.bigint() - startedAt) / 1e9;
     const results = [];
+    let at = 0;
     const detectStart = process.hrtime.bigint();
     for (let i = 0; i < images.length; ++i) {
       const image = images[i];
       let detection;
       try {
         const mode = i === 0 ? 'track' : options.mode === 'images' ? 'forget' : image.camera !== images[i - 1].camera ? 'restart' : 'track';
-        detection = await page.evaluate((url, m) => window.simcapDetect(url, m), '/dataset/' + image.fileName, mode);
+        // The dataset's time in video mode; a second between images that are not consecutive.
+        at += mode === 'track' && i > 0 ? (1000 * options.every) / fps : 1000;
+        detection = await page.evaluate((url, m, t) => window.simcapDetect(url, m, t), '/dataset/' + image.fileName, mode, at);
       } catch (e) {
         checkFailures();
         const reason = /timed out/.test(e.message)
@@ -356,7 +362,7 @@ async function main() {
     if (!options.quiet) process.stderr.write(text);
   };
   try {
-    const images = listImages(options);
+    const {images, fps} = listImages(options);
     log(`detect_mediapipe: ${images.length} images of ${options.dataset} (model ${options.model})\n`);
     let lastPrint = 0;
     const progress = (done, total, found, image) => {
@@ -367,7 +373,7 @@ async function main() {
         log(`\rdetect_mediapipe: ${done}/${total} images, person in ${found} (${image.camera} frame ${image.frame})${lineOpen ? '' : '\n'}`);
       }
     };
-    const {results, initSeconds, detectSeconds} = await detect(options, images, progress);
+    const {results, initSeconds, detectSeconds} = await detect(options, images, fps, progress);
     writeAtomically(options.output, formatResults(results));
     log(`detect_mediapipe: person found in ${results.length} of ${images.length} images; ` +
       `${(1000 * detectSeconds / images.length).toFixed(1)} ms/image (+ ${initSeconds.toFixed(1)} s start-up) -> ${options.output}\n`);
