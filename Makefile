@@ -7,12 +7,16 @@ FUZZ_TARGETS ?=
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all setup build demo test test-sanitize fuzz bench format clean
+.PHONY: all setup setup-mediapipe build demo test test-sanitize fuzz bench format clean
 
 all: build
 
 setup:
 	@bash scripts/setup.sh
+
+# scripts/detect_mediapipe's chromium and npm packages; the tests run the detector end to end.
+setup-mediapipe:
+	@bash scripts/setup_mediapipe.sh
 
 $(BUILD)/build.ninja: | setup
 	cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
@@ -23,10 +27,10 @@ build: setup $(BUILD)/build.ninja
 demo: build
 	$(BUILD)/apps/simcap/simcap demo
 
-test: build
+test: build setup-mediapipe
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
-test-sanitize: setup
+test-sanitize: setup setup-mediapipe
 	cmake -S . -B $(SAN_BUILD) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSIMCAP_SANITIZE=ON -DSIMCAP_BUILD_BENCH=OFF
 	cmake --build $(SAN_BUILD) -j $(JOBS)
 	cd $(SAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ctest --output-on-failure -j $(JOBS)

@@ -1,8 +1,10 @@
 #include "apps/simcap/closed_loop.h"
+#include "apps/simcap/choice_option.h"
 #include "apps/simcap/track_cli.h"
 
 #include <chrono>
 #include <cstdio>
+#include <string>
 
 #include "core/error.h"
 #include "validate/summary_text.h"
@@ -16,8 +18,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-void announce(bool quiet, int stage, const char* what) {
-  if (!quiet) std::fprintf(stderr, "[%d/3] %s\n", stage, what);
+void announce(bool quiet, int stage, int stages, const std::string& what) {
+  if (!quiet) std::fprintf(stderr, "[%d/%d] %s\n", stage, stages, what.c_str());
 }
 
 }  // namespace
@@ -33,25 +35,49 @@ LoopResult run_closed_loop(const LoopRun& run, const fs::path& out) {
   track.quiet = run.quiet;
   ValidateOptions validate = run.validate;
   validate.quiet = run.quiet;
+  r.detector = run.detector;
+  const bool detect = run.detector != LoopDetector::none;
+  const int stages = detect ? 4 : 3;
+  if (detect) {
+    // Checked before anything is rendered.
+    if (track.method != tracker::TrackMethod::automatic &&
+        track.method != tracker::TrackMethod::triangulate) {
+      throw Error("--detector " + std::string(name_of(kLoopDetectors, run.detector)) +
+                  ": its keypoints are triangulated, so --method must be triangulate (or unset), "
+                  "not " +
+                  std::string(name_of(tracker::kTrackMethods, track.method)));
+    }
+    track.method = tracker::TrackMethod::triangulate;
+    track.triangulate.detections = out / "detections.json";
+  }
 
   auto t = std::chrono::steady_clock::now();
   if (run.existing_dataset.empty()) {
-    announce(run.quiet, 1, "render");
+    announce(run.quiet, 1, stages, "render");
     r.dataset = out / "dataset";
     r.render = render_dataset(run.scene, r.dataset, render);
     r.render_s = seconds_since(t);
   } else {
-    announce(run.quiet, 1, ("render: reusing " + run.existing_dataset.string()).c_str());
+    announce(run.quiet, 1, stages, "render: reusing " + run.existing_dataset.string());
     r.dataset = run.existing_dataset;
   }
 
+  if (detect) {
+    announce(run.quiet, 2, stages,
+             "detect (" + std::string(name_of(kLoopDetectors, run.detector)) + ")");
+    t = std::chrono::steady_clock::now();
+    run_loop_detector(run.detector, r.dataset, track.triangulate.detections, run.truth_noise,
+                      run.quiet);
+    r.detect_s = seconds_since(t);
+  }
+
   track.method = tracker::resolve_method(track.method, tracker::Dataset(r.dataset));
-  announce(run.quiet, 2, ("track (" + track_options_text(track) + ")").c_str());
+  announce(run.quiet, stages - 1, stages, "track (" + track_options_text(track) + ")");
   t = std::chrono::steady_clock::now();
   r.track = tracker::track_dataset(r.dataset, out / "track", track);
   r.track_s = seconds_since(t);
 
-  announce(run.quiet, 3, "validate");
+  announce(run.quiet, stages, stages, "validate");
   t = std::chrono::steady_clock::now();
   r.validate = validate_dataset(r.dataset, out / "track", out / "report", validate);
   r.validate_s = seconds_since(t);
@@ -75,6 +101,11 @@ std::string loop_summary_text(const LoopResult& r) {
                   r.dataset.string().c_str());
   }
   s += buf;
+  if (r.detector != LoopDetector::none) {
+    std::snprintf(buf, sizeof buf, "  %-10s %7.1f s  %s\n", "detect", r.detect_s,
+                  std::string(name_of(kLoopDetectors, r.detector)).c_str());
+    s += buf;
+  }
   std::snprintf(buf, sizeof buf, "  %-10s %7.1f s  %.1f frames/s (%d re-initialization%s)\n",
                 "track", r.track_s, r.track.frames / r.track_s, r.track.reinitializations,
                 r.track.reinitializations == 1 ? "" : "s");
@@ -90,6 +121,14 @@ void add_loop_options(CLI::App* cmd, LoopRun& run, LoopCliOptions& cli) {
   add_render_options(cmd, run.render, cli.seed);
   add_track_options(cmd, run.track, TrackOptionScope::loop);
   add_scoring_options(cmd, run.validate, cli.scoring);
+  add_choice(cmd, "--detector", run.detector, kLoopDetectors,
+             "2D keypoints triangulated by --method triangulate instead of a tracker reading the "
+             "images: mediapipe (scripts/detect_mediapipe; set-up: make setup-mediapipe) or "
+             "truth-noise (the true COCO-17 keypoints plus --noise-px)");
+  cmd->add_option("--noise-px", run.truth_noise.sigma_px,
+                  "--detector truth-noise: standard deviation of each pixel coordinate's noise")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   cmd->add_flag("-q,--quiet", run.quiet, "No progress on stderr");
 }
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "apps/simcap/loop_detector.h"
 #include "apps/simcap/option_groups.h"
 #include "sim/render_job.h"
 #include "tracker/registry.h"
@@ -20,6 +21,10 @@ struct LoopRun {
   tracker::TrackOptions track;
   ValidateOptions validate;
   bool quiet = false;
+  // A 2D detector run on the rendered images (OUT/detections.json), whose keypoints the
+  // triangulate tracker then lifts; none: the tracker reads the images itself.
+  LoopDetector detector = LoopDetector::none;
+  TruthNoise truth_noise{2.0, 1};  // --detector truth-noise
   // When set, this dataset is tracked and validated as it is and nothing is rendered (a sweep
   // renders a scene once for all the tracker settings it compares).
   std::filesystem::path existing_dataset;
@@ -30,19 +35,21 @@ struct LoopResult {
   RenderSummary render;  // frames = 0 when the dataset was not rendered by this run
   TrackSummary track;
   ValidateSummary validate;
-  double render_s = 0, track_s = 0, validate_s = 0;
+  LoopDetector detector = LoopDetector::none;
+  double render_s = 0, detect_s = 0, track_s = 0, validate_s = 0;
 };
 
 // Renders into OUT/dataset (replacing a dataset a previous run left there, unless
-// run.render.resume; skipped for run.existing_dataset), tracks into OUT/track and validates into
-// OUT/report, announcing each stage on stderr before its progress line.
+// run.render.resume; skipped for run.existing_dataset), runs run.detector into
+// OUT/detections.json, tracks into OUT/track and validates into OUT/report, announcing each
+// stage on stderr before its progress line.
 LoopResult run_closed_loop(const LoopRun& run, const std::filesystem::path& out);
 
 // The stage table (time, rate) and the headline metrics, then the report's path.
 std::string loop_summary_text(const LoopResult& result);
 
 // The options of `loop` that `demo` shares: the render and scoring groups (option_groups.h), the
-// tracker's (track_cli.h) and --quiet.
+// tracker's (track_cli.h), the detector's and --quiet.
 struct LoopCliOptions {
   SeedOption seed;
   ScoringOptions scoring;

@@ -35,7 +35,9 @@ void add_loop(CLI::App& app, Action& action) {
       "Examples:\n"
       "  simcap loop scenes/studio4.yaml -o out/loop --frames 120\n"
       "  simcap loop scenes/occluders.yaml -o out/occ --silhouettes bgsub --fail-above 60\n"
-      "  simcap loop scenes/studio8.yaml -o out/ring6 --set rig.count=6");
+      "  simcap loop scenes/studio8.yaml -o out/ring6 --set rig.count=6\n"
+      "  simcap loop scenes/studio4.yaml -o out/mp --detector mediapipe --frames 60\n"
+      "  simcap loop scenes/studio4.yaml -o out/tn --detector truth-noise --noise-px 2");
   cmd->callback([&action] { action = [] { return run_loop(args); }; });
 }
 

@@ -11,8 +11,6 @@
 
 namespace simcap::testing {
 
-namespace {
-
 int run_shell(const std::string& command, std::string* output) {
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return -1;
@@ -24,8 +22,6 @@ int run_shell(const std::string& command, std::string* output) {
   if (output) *output = text;
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
-
-}  // namespace
 
 int run_simcap(const std::string& args, std::string* output) {
   return run_shell(std::string(SIMCAP_BINARY) + " " + args + " 2>&1", output);

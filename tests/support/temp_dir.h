@@ -33,6 +33,8 @@ class TempDir {
   std::filesystem::path path_;
 };
 
+// Runs `command` with sh; returns its exit status and captures its stdout into `output`.
+int run_shell(const std::string& command, std::string* output = nullptr);
 // Runs the simcap program with `args` (a shell-quoted string); returns its exit status and
 // captures stdout+stderr into `output`.
 int run_simcap(const std::string& args, std::string* output = nullptr);

@@ -114,6 +114,34 @@ TEST(LoopCli, RendersTracksAndValidates) {
       nlohmann::json::parse(read_text(dir / "loop" / "report" / "metrics.json"))["frame_count"], 3);
 }
 
+TEST(LoopCli, DetectorTruthNoiseIsTriangulated) {
+  TempDir dir;
+  std::string out;
+  const fs::path scene = fs::path(SIMCAP_SOURCE_DIR) / "scenes" / "studio4.yaml";
+  ASSERT_EQ(run_simcap("loop " + quoted(scene) + " -o " + quoted(dir / "loop") +
+                           " --frames 3 --no-media --detector truth-noise --noise-px 1 -q",
+                       &out),
+            0)
+      << out;
+  for (const char* word : {"detect", "truth-noise", "MPJPE"}) {
+    EXPECT_NE(out.find(word), std::string::npos) << word << "\n" << out;
+  }
+  EXPECT_TRUE(fs::exists(dir / "loop" / "detections.json"));
+  const auto json = nlohmann::json::parse(read_text(dir / "loop" / "report" / "metrics.json"));
+  EXPECT_EQ(json["frame_count"], 3);
+  // 1 px of noise seen by 4 cameras 3-4 m away moves a triangulated joint by millimetres; the
+  // rest is how far the COCO keypoints the family lifts lie from the H-Anim joints it scores.
+  EXPECT_LT(json["mpjpe_mm"].get<double>(), 40.0);
+
+  // A detector with a tracker that reads images is refused before anything is rendered.
+  EXPECT_EQ(run_simcap("loop " + quoted(scene) + " -o " + quoted(dir / "bad") +
+                           " --frames 2 --detector truth-noise --method moschini -q",
+                       &out),
+            1);
+  EXPECT_NE(out.find("--method must be triangulate"), std::string::npos) << out;
+  EXPECT_FALSE(fs::exists(dir / "bad" / "dataset"));
+}
+
 TEST(StressCli, SweepWritesOneRowPerPoint) {
   TempDir dir;
   write_text_atomic(
