@@ -3,41 +3,13 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <limits>
-#include <map>
 
 #include "core/error.h"
-#include "models/body_mesh.h"
 #include "models/humanoid.h"
-#include "models/keypoint_sets.h"
+#include "tracker/triangulate/reference_body.h"
 
 namespace simcap::tracker {
 namespace {
-
-// Anchors by the body point they are: COCO-17 names (every layout's twin of them), plus
-// Human3.6M's Head (the top of the head) for layouts without ears.
-using Anchors = std::map<std::string, Eigen::Vector3d>;
-
-Anchors reference_anchors() {
-  const Skeleton s = build_humanoid();
-  const BodyMesh mesh = build_body_mesh(s);
-  Anchors a;
-  for (const BodyPoint& p : coco17_points(s, mesh)) a[p.name] = s[p.joint].center + p.offset;
-  for (const BodyPoint& p : h36m17_points(s, mesh)) {
-    if (p.name == "Head") a["Head"] = s[p.joint].center + p.offset;
-  }
-  for (const char* j : {"humanoid_root", "vc7", "skullbase"}) a[j] = s[s.require(j)].center;
-  return a;
-}
-
-// The keypoint that is `anchor`: its COCO twin, or its Human3.6M truth point.
-int keypoint_of(const KeypointLayout& layout, const std::string& anchor) {
-  for (int k = 0; k < layout.size(); ++k) {
-    const LayoutKeypoint& kp = layout.keypoints[k];
-    if (kp.coco_twin == anchor) return k;
-    if (kp.truth == TruthKind::h36m17_point && kp.truth_name == anchor) return k;
-  }
-  return -1;
-}
 
 struct Frame {
   Eigen::Vector3d origin;
@@ -91,7 +63,7 @@ HAnimJoints::HAnimJoints(const KeypointLayout& layout) {
     joints_.emplace_back(kp.truth_name);
     direct_.push_back(k);
   }
-  const Anchors ref = reference_anchors();
+  const Anchors& ref = reference_anchors();
   for (const Rule& r : rules()) {
     if (std::find(joints_.begin(), joints_.end(), r.joint) != joints_.end()) continue;
     DerivedJoint d{r.joint,

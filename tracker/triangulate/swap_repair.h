@@ -24,9 +24,10 @@ struct SwapFix {
   int camera = 0;
 };
 
-// Examines every pair {k, partner[k]} (partner[k] < 0: none) and exchanges in place the two
-// keypoints' observations from the view whose exchange helps most, repeatedly, while that
-// helps clearly (so a pair swapped in two views of five is fixed too). Returns the exchanges.
+// Examines every pair {k, partner[k]} (partner[k] < 0: none) whose two keypoints three or more
+// views saw, and exchanges in place the two keypoints' observations from the view whose exchange
+// helps most, repeatedly, while that helps clearly (so a pair swapped in two views of five is
+// fixed too). Returns the exchanges.
 std::vector<SwapFix> repair_swaps(std::vector<KeypointViews>& keypoints,
                                   std::span<const int> partner, std::span<const Camera> cameras,
                                   const SwapRepairOptions& options = {});

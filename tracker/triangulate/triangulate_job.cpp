@@ -14,6 +14,7 @@
 #include "core/progress.h"
 #include "tracker/triangulate/butterworth.h"
 #include "tracker/triangulate/hanim_joints.h"
+#include "tracker/triangulate/unseen_keypoints.h"
 
 namespace simcap::tracker {
 namespace fs = std::filesystem;
@@ -214,6 +215,9 @@ TriangulationResult run_triangulation(const Dataset& ds, const TriangulateOption
     result.swaps_repaired += static_cast<int>(poses[f].swaps.size());
   }
   smooth(positions, o, ds.fps());
+  for (const int k : place_unseen_keypoints(positions, layout)) {
+    result.unseen.emplace_back(layout.keypoints[k].name);
+  }
   result.track.joints = hanim.joints();
   for (size_t f = 0; f < n; ++f)
     result.track.add_frame(frame_numbers[f], hanim.place(positions[f]));
@@ -238,6 +242,13 @@ TrackSummary track_triangulate(const fs::path& dataset, const fs::path& out,
                  "triangulate: %d frames, %d left/right swaps repaired, %d views excluded, %d "
                  "keypoints missing (filled over time)\n",
                  r.frames, r.swaps_repaired, r.views_excluded, r.keypoints_missing);
+    if (!r.unseen.empty()) {
+      std::string names;
+      for (const std::string& k : r.unseen) names += (names.empty() ? "" : ", ") + k;
+      std::fprintf(stderr,
+                   "triangulate: never seen by two views, placed from the reference body: %s\n",
+                   names.c_str());
+    }
   }
   TrackSummary summary;
   summary.frames = r.frames;

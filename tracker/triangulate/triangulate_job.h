@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/joint_track.h"
 #include "core/name_table.h"
@@ -48,6 +49,8 @@ struct TriangulationResult {
   std::string keypoints;  // diagnostics/keypoints.csv
   std::string swaps;      // diagnostics/swaps.csv
   int frames = 0, swaps_repaired = 0, views_excluded = 0, keypoints_missing = 0;
+  // Keypoints no two views saw in any frame, placed from the reference body (unseen_keypoints.h).
+  std::vector<std::string> unseen;
   TriangulateStages stages;
 };
 

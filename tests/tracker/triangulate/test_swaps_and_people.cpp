@@ -79,6 +79,23 @@ TEST(PoseTriangulation, LeavesAgreeingViewsAlone) {
   }
 }
 
+TEST(PoseTriangulation, LendsNoViewsToAKeypointOneCameraAloneSaw) {
+  // The right wrist found in camera 0 only: it stays missing, and no view of the left wrist is
+  // relabelled to give it a second one.
+  const auto cams = camera_ring(4);
+  const auto truth = body();
+  std::vector<PersonKeypoints> people;
+  for (const Camera& c : cams) people.push_back(seen(c, truth));
+  for (int c = 1; c < 4; ++c) people[c].keypoints[6].z() = 0.0;
+  std::vector<const PersonKeypoints*> views;
+  for (const auto& p : people) views.push_back(&p);
+  const TriangulatedPose pose = triangulate_pose(cams, views, kPartner, 7);
+  EXPECT_TRUE(pose.swaps.empty());
+  EXPECT_FALSE(pose.keypoints[6]);
+  ASSERT_TRUE(pose.keypoints[5]);
+  EXPECT_LT((pose.keypoints[5]->position - truth[5]).norm(), 1e-9);
+}
+
 TEST(PersonAssociation, FindsTheSamePersonInEveryCameraAndFollowsIt) {
   const auto cams = camera_ring(4);
   const auto actor = body({0.4, 0, 0.2}), other = body({-0.6, 0, -0.5});

@@ -113,6 +113,35 @@ TEST_F(TriangulateJob, AWrongCameraASecondPersonAndSwapsDoNotMatter) {
   EXPECT_NE(swaps.find("0,cam01,left_knee,right_knee"), std::string::npos) << swaps;
 }
 
+TEST_F(TriangulateJob, AWristOneCameraAloneSeesIsPlacedFromTheBodyAndScored) {
+  // The right wrist (COCO 10) behind a pillar for three cameras of four through the whole take:
+  // no pair of views, nothing to interpolate. The track still has every joint, and the guess is
+  // scored like the rest.
+  Detections hidden = truth(2.0, 3);
+  for (int f = 0; f < kFrames; ++f) {
+    for (int c = 1; c < 4; ++c) {
+      for (DetectedPerson& p : hidden.at(f, c)) p.keypoints[10] = DetectedKeypoint{};
+    }
+  }
+  const fs::path track = path("hidden_wrist"), report = path("hidden_wrist_v");
+  write_coco_results(hidden, path("hidden_wrist.json"));
+  std::string log;
+  ASSERT_EQ(
+      run_simcap("track " + dataset().string() + " -o " + track.string() +
+                     " --method triangulate --detections " + path("hidden_wrist.json").string(),
+                 &log),
+      0)
+      << log;
+  EXPECT_NE(log.find("placed from the reference body: right_wrist"), std::string::npos) << log;
+  ASSERT_EQ(run_simcap("validate " + dataset().string() + " " + track.string() + " -o " +
+                           report.string() + " --no-media -q",
+                       &log),
+            0)
+      << log;
+  const Json m = Json::parse(read_text(report / "metrics.json"));
+  EXPECT_LT(m["mpjpe_mm"].get<double>(), 60.0);
+}
+
 TEST_F(TriangulateJob, MissingDetectionsAreRefusedBeforeAnythingIsWritten) {
   std::string log;
   const fs::path track = path("refused");
