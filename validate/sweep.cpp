@@ -1,6 +1,7 @@
 #include "validate/sweep.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -115,6 +116,36 @@ std::string relative_report(const SweepOutcome& o, const fs::path& out) {
   return o.report.empty() ? "" : o.report.lexically_relative(out).generic_string();
 }
 
+// A sweep with a 2D detector in its loop gets the detector's columns (decided by the points, so
+// that the header does not change when the first point fails).
+bool has_detector(const std::vector<SweepPoint>& points) {
+  return std::any_of(points.begin(), points.end(),
+                     [](const SweepPoint& p) { return !p.config.detector.name.empty(); });
+}
+
+// The visibility classes of the 2D columns: -1 pools the in-frame ones, then visible,
+// self-occluded, scene-occluded (out of frame is what the detector cannot see; a detection there
+// is a guess the pool leaves out too).
+constexpr std::array<int, 4> k2dClasses = {-1, 0, 1, 2};
+const char* const k2dShort[] = {"all", "vis", "self", "scene"};
+
+const KeypointGroup& group_2d(const KeypointScores& s, int c) {
+  return c < 0 ? s.all : s.by_visibility[c];
+}
+
+std::string class_stem(int c) {
+  return c < 0 ? "in_frame" : std::string(visibility_class_name(c));
+}
+
+// An empty cell for an empty group (NaN), as keypoints2d.csv writes it.
+std::string csv_number(double v, int decimals) {
+  return std::isnan(v) ? "" : fixed(v, decimals);
+}
+
+std::string text_number(double v, int decimals, double scale = 1, const char* unit = "") {
+  return std::isnan(v) ? "-" : fixed(v * scale, decimals) + unit;
+}
+
 void write_csv(const SweepSpec& spec, const std::vector<SweepPoint>& points,
                const std::vector<SweepOutcome>& outcomes, const fs::path& out) {
   std::vector<std::string> columns = {"point"};
@@ -123,6 +154,16 @@ void write_csv(const SweepSpec& spec, const std::vector<SweepPoint>& points,
                         "pck_150mm", "rmse_mean_mm", "wrists_elbows_mm", "failed_fraction",
                         "worst_joint", "worst_joint_mm", "report"}) {
     columns.push_back(c);
+  }
+  const bool detector = has_detector(points);
+  if (detector) {
+    columns.push_back("ap_2d");
+    for (int c : k2dClasses) {
+      for (const char* m : {"_miss_rate", "_median_px", "_pck_torso_0.2", "_swap_rate"}) {
+        columns.push_back(class_stem(c) + m);
+      }
+    }
+    columns.push_back("report2d");
   }
   CsvWriter csv(out / "table.csv", columns);
   CsvWriter times(out / "timings.csv",
@@ -142,7 +183,24 @@ void write_csv(const SweepSpec& spec, const std::vector<SweepPoint>& points,
     } else {
       csv.out() << ",error: " << csv_cell(o.error) << ",,,,,,,,,,,";
     }
-    csv.out() << ',' << relative_report(o, out) << '\n';
+    csv.out() << ',' << relative_report(o, out);
+    if (detector) {
+      if (o.keypoints2d) {
+        const KeypointScores& k = *o.keypoints2d;
+        csv.out() << ',' << fixed(k.coco.ap, 4);
+        for (int c : k2dClasses) {
+          const KeypointGroup& g = group_2d(k, c);
+          csv.out() << ',' << csv_number(g.miss_rate(), 4) << ',' << csv_number(g.median_px(), 2)
+                    << ',' << csv_number(g.pck_torso(1), 4) << ',' << csv_number(g.swap_rate(), 4);
+        }
+        csv.out() << ','
+                  << (o.report2d.empty() ? ""
+                                         : o.report2d.lexically_relative(out).generic_string());
+      } else {
+        csv.out() << std::string(2 + 4 * k2dClasses.size(), ',');
+      }
+    }
+    csv.out() << '\n';
     times.out() << i << ',' << fixed(o.render_s, 2) << ',' << fixed(o.track_s, 2) << ','
                 << fixed(o.validate_s, 2) << ',';
     const double fps = track_fps(o);
@@ -236,6 +294,49 @@ std::string html_table(const SweepSpec& spec, const std::vector<SweepPoint>& poi
   return s + "</table>\n";
 }
 
+std::string html_table_2d(const SweepSpec& spec, const std::vector<SweepPoint>& points,
+                          const std::vector<SweepOutcome>& outcomes, const fs::path& out) {
+  std::string s =
+      "<h2>2D keypoints of the detector</h2>\n<p>COCO AP over every image; per visibility class "
+      "of the truth: keypoints missed, median pixel error of the detected ones, PCK at 0.2 of "
+      "the torso, and left/right swaps.</p>\n<table>\n<tr><th>#</th>";
+  for (const auto& a : spec.axes) s += "<th>" + xml_escape(a.name) + "</th>";
+  s += "<th>AP</th>";
+  for (int c : k2dClasses) {
+    s += "<th colspan=\"4\">" + xml_escape(c < 0 ? "in frame" : class_stem(c)) + "</th>";
+  }
+  s += "<th>report</th></tr>\n<tr><th colspan=\"" + std::to_string(spec.axes.size() + 2) +
+       "\"></th>";
+  for (size_t c = 0; c < k2dClasses.size(); ++c) {
+    s += "<th>missed</th><th>median px</th><th>PCK@0.2</th><th>swapped</th>";
+  }
+  s += "<th></th></tr>\n";
+  for (size_t i = 0; i < outcomes.size(); ++i) {
+    const SweepOutcome& o = outcomes[i];
+    s += "<tr><td>" + std::to_string(i) + "</td>";
+    for (const auto& l : points[i].labels) s += "<td>" + xml_escape(l) + "</td>";
+    if (!o.keypoints2d) {
+      s += "<td colspan=\"" + std::to_string(1 + 4 * k2dClasses.size()) +
+           "\">-</td><td></td></tr>\n";
+      continue;
+    }
+    s += "<td>" + fixed(o.keypoints2d->coco.ap, 3) + "</td>";
+    for (int c : k2dClasses) {
+      const KeypointGroup& g = group_2d(*o.keypoints2d, c);
+      for (const std::string& v :
+           {text_number(g.miss_rate(), 1, 100, "%"), text_number(g.median_px(), 2),
+            text_number(g.pck_torso(1), 1, 100, "%"), text_number(g.swap_rate(), 1, 100, "%")}) {
+        s += "<td>" + xml_escape(v) + "</td>";
+      }
+    }
+    const std::string link =
+        o.report2d.empty() ? "" : o.report2d.lexically_relative(out).generic_string();
+    s += "<td>" + (link.empty() ? "" : "<a href=\"" + xml_escape(link) + "\">report</a>") +
+         "</td></tr>\n";
+  }
+  return s + "</table>\n";
+}
+
 std::string config_text(const LoopConfig& c) {
   std::string s = "scene " + c.scene.string();
   s += c.frames > 0 ? ", " + std::to_string(c.frames) + " frames" : ", all frames";
@@ -243,6 +344,13 @@ std::string config_text(const LoopConfig& c) {
   if (!c.motion.empty()) s += ", motion " + c.motion.string();
   for (const auto& o : c.scene_overrides) s += ", " + o;
   for (const auto& [k, v] : c.track_options) s += ", track " + k + "=" + v;
+  if (!c.detector.name.empty()) {
+    s += ", detector " + c.detector.name;
+    if (c.detector.name == "truth-noise") {
+      s += " (" + fixed(c.detector.noise_px, 1) + " px, seed " + std::to_string(c.detector.seed) +
+           ")";
+    }
+  }
   return s;
 }
 
@@ -279,6 +387,38 @@ std::string sweep_table_text(const SweepSpec& spec, const std::vector<SweepPoint
       line(name, cells, std::string(name) == "worst" ? sum->worst_joint : "");
     }
   }
+  if (std::none_of(outcomes.begin(), outcomes.end(),
+                   [](const SweepOutcome& o) { return o.keypoints2d.has_value(); })) {
+    return s;
+  }
+  s += "2D keypoints of the detector: COCO AP; median px and missed by visibility class\n";
+  const auto line2d = [&](const std::string& label, const std::vector<std::string>& cells) {
+    std::snprintf(buf, sizeof buf, "  %-24s", label.c_str());
+    s += buf;
+    for (const std::string& c : cells) {
+      std::snprintf(buf, sizeof buf, " %9s", c.c_str());
+      s += buf;
+    }
+    s += '\n';
+  };
+  std::vector<std::string> heading = {"AP"};
+  for (size_t c = 0; c < k2dClasses.size(); ++c)
+    heading.push_back(std::string("px ") + k2dShort[c]);
+  for (size_t c = 0; c < k2dClasses.size(); ++c)
+    heading.push_back(std::string("miss ") + k2dShort[c]);
+  heading.push_back("swapped");
+  line2d(spec.axes.front().name, heading);
+  for (size_t i = 0; i < outcomes.size(); ++i) {
+    if (!outcomes[i].keypoints2d) continue;
+    const KeypointScores& k = *outcomes[i].keypoints2d;
+    std::string label;
+    for (const auto& l : points[i].labels) label += (label.empty() ? "" : " / ") + l;
+    std::vector<std::string> cells = {fixed(k.coco.ap, 3)};
+    for (int c : k2dClasses) cells.push_back(text_number(group_2d(k, c).median_px(), 2));
+    for (int c : k2dClasses) cells.push_back(text_number(group_2d(k, c).miss_rate(), 1, 100, "%"));
+    cells.push_back(text_number(k.all.swap_rate(), 1, 100, "%"));
+    line2d(label, cells);
+  }
   return s;
 }
 
@@ -311,7 +451,9 @@ void write_sweep_tables(const SweepSpec& spec, const std::vector<SweepPoint>& po
           "</style>\n</head>\n<body>\n<h1>" +
           xml_escape(title) + "</h1>\n<p>Sweep file <code>" + xml_escape(spec.file.string()) +
           "</code>; base: " + xml_escape(config_text(spec.base)) + ".</p>\n" +
-          html_table(spec, points, outcomes, out) + svg + "</body>\n</html>\n");
+          html_table(spec, points, outcomes, out) + svg +
+          (has_detector(points) ? html_table_2d(spec, points, outcomes, out) : "") +
+          "</body>\n</html>\n");
 }
 
 std::vector<SweepOutcome> run_sweep(const SweepSpec& spec, const fs::path& out,

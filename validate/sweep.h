@@ -1,6 +1,7 @@
 // Runs a stress sweep point by point through a caller-supplied closed loop and publishes the
 // results: OUT/table.csv (deterministic), OUT/table.html with the plot, OUT/mpjpe.svg (MPJPE
-// against the first varied parameter) and OUT/timings.csv (seconds per stage).
+// against the first varied parameter) and OUT/timings.csv (seconds per stage); with a 2D
+// detector in the loop, its keypoint scores by visibility class too.
 #pragma once
 
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "validate/evaluation.h"
+#include "validate/keypoint_scores.h"
 #include "validate/sweep_spec.h"
 
 namespace simcap {
@@ -18,6 +20,8 @@ struct SweepOutcome {
   std::optional<Evaluation> evaluation;              // empty when the point failed
   std::string error;                                 // why it failed
   std::filesystem::path report;                      // the point's report.html
+  std::optional<KeypointScores> keypoints2d;         // the 2D detector's scores, if it had one
+  std::filesystem::path report2d;                    // ... and their report.html
   double render_s = 0, track_s = 0, validate_s = 0;  // wall time of each stage
 };
 
@@ -38,7 +42,9 @@ void write_sweep_tables(const SweepSpec& spec, const std::vector<SweepPoint>& po
 
 // The table `simcap stress` prints: per point MPJPE, PA-MPJPE, PCK@100, failed frames, the worst
 // joint and tracked frames/s, then a mean row and a worst row (each column's worst value; the
-// worst joint of the point whose worst joint is furthest off).
+// worst joint of the point whose worst joint is furthest off). When points have 2D detector
+// scores, a second table follows: COCO AP and, per visibility class (visible, self-occluded,
+// scene-occluded), the median pixel error and the miss rate, and the left/right swap rate.
 std::string sweep_table_text(const SweepSpec& spec, const std::vector<SweepPoint>& points,
                              const std::vector<SweepOutcome>& outcomes);
 

@@ -67,6 +67,19 @@ void apply(LoopConfig& c, const SweepSetting& s, const fs::path& dir, const fs::
     const auto v = parse_number<double>(s.value);
     if (!v || !(*v > 0)) throw_input_error(file, s.line, s.key, "expected a positive number");
     c.failure_threshold_mm = *v;
+  } else if (s.key == "detector" || s.key == "detector.name") {
+    c.detector.name = s.value;
+    c.detector.line = s.line;
+  } else if (s.key == "detector.noise_px") {
+    const auto v = parse_number<double>(s.value);
+    if (!v || !(*v >= 0)) throw_input_error(file, s.line, s.key, "expected a number >= 0 (pixels)");
+    c.detector.noise_px = *v;
+  } else if (s.key == "detector.seed") {
+    const auto v = parse_number<std::uint64_t>(s.value);
+    if (!v) throw_input_error(file, s.line, s.key, "expected a non-negative integer");
+    c.detector.seed = *v;
+  } else if (s.key.rfind("detector.", 0) == 0) {
+    throw_input_error(file, s.line, s.key, "unknown detector key; expected name, noise_px or seed");
   } else if (s.key.rfind("track.", 0) == 0) {
     if (s.key.size() == 6) throw_input_error(file, s.line, s.key, "expected track.<option>");
     c.track_options.emplace_back(s.key.substr(6), s.value);
@@ -74,7 +87,8 @@ void apply(LoopConfig& c, const SweepSetting& s, const fs::path& dir, const fs::
              s.key == "label" || s.key.empty() || s.key.find('=') != std::string::npos) {
     throw_input_error(file, s.line, s.key,
                       "cannot be varied; expected scene, frames, seed, motion, "
-                      "failure_threshold_mm, track.<option> or a scene key such as rig.count");
+                      "failure_threshold_mm, track.<option>, detector.<key> or a scene key such "
+                      "as rig.count");
   } else {
     c.scene_overrides.push_back(s.key + "=" + s.value);
   }
@@ -172,11 +186,13 @@ SweepSpec load_sweep(const fs::path& file) {
       } else if (key == "scene" || key == "frames" || key == "seed" || key == "motion" ||
                  key == "failure_threshold_mm") {
         apply(spec.base, {key, scalar(v, file, key), line_of(v)}, dir, file);
-      } else if (key == "set" || key == "track") {
+      } else if (key == "detector" && v.IsScalar()) {
+        apply(spec.base, {key, v.Scalar(), line_of(v)}, dir, file);
+      } else if (key == "set" || key == "track" || key == "detector") {
         if (!v.IsMap()) throw_input_error(file, line_of(v), key, "expected a map of key: value");
         for (const auto& s : v) {
           const std::string name = s.first.as<std::string>();
-          const std::string full = key == "track" ? "track." + name : name;
+          const std::string full = key == "set" ? name : key + "." + name;
           apply(spec.base, {full, value_text(s.second, file, key + "." + name), line_of(s.second)},
                 dir, file);
         }
@@ -188,7 +204,7 @@ SweepSpec load_sweep(const fs::path& file) {
       } else {
         throw_input_error(file, line_of(kv.first), key,
                           "unknown key; expected title, scene, frames, seed, motion, set, track, "
-                          "failure_threshold_mm or vary");
+                          "detector, failure_threshold_mm or vary");
       }
     }
   } catch (const YAML::Exception& e) {

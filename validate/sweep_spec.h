@@ -12,6 +12,15 @@
 
 namespace simcap {
 
+// The 2D detector of a sweep's closed loop (`detector:`), whose keypoints the triangulate
+// tracker lifts; its name is checked by the apps layer, which knows the detectors.
+struct DetectorConfig {
+  std::string name;        // empty: none, the tracker reads the images
+  int line = 0;            // of the name in the sweep file
+  double noise_px = 2.0;   // truth-noise: standard deviation of each pixel coordinate's noise
+  std::uint64_t seed = 1;  // truth-noise: seed of that noise
+};
+
 // One closed-loop run, in the terms of the command line: the apps layer maps it onto the
 // renderer's and tracker's options (so that this library depends on neither).
 struct LoopConfig {
@@ -24,10 +33,12 @@ struct LoopConfig {
   // a later entry for the same name wins.
   std::vector<std::pair<std::string, std::string>> track_options;
   double failure_threshold_mm = 100.0;
+  DetectorConfig detector;
 };
 
 // What one point of an axis changes: `key` is "scene", "frames", "seed", "motion",
-// "track.<option>" or a scene key path ("rig.count"); `value` is the YAML scalar's text.
+// "track.<option>", "detector.name|noise_px|seed" or a scene key path ("rig.count"); `value` is the
+// YAML scalar's text.
 struct SweepSetting {
   std::string key, value;
   int line = 0;  // in the sweep file, for error messages
@@ -63,6 +74,7 @@ inline constexpr std::size_t kMaxSweepPoints = 10'000;
 //   seed: 1
 //   set: {rig.radius: 3.5}                    # fixed scene overrides
 //   track: {method: moschini, silhouettes: gt, init: gt}
+//   detector: {name: truth-noise, noise_px: 2, seed: 1}   # or mediapipe; then track: triangulate
 //   failure_threshold_mm: 100
 //   vary:
 //     - parameter: rig.count                  # one parameter and its values, or

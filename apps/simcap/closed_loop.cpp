@@ -2,6 +2,7 @@
 #include "apps/simcap/choice_option.h"
 #include "apps/simcap/track_cli.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -40,13 +41,7 @@ LoopResult run_closed_loop(const LoopRun& run, const fs::path& out) {
   const int stages = detect ? 4 : 3;
   if (detect) {
     // Checked before anything is rendered.
-    if (track.method != tracker::TrackMethod::automatic &&
-        track.method != tracker::TrackMethod::triangulate) {
-      throw Error("--detector " + std::string(name_of(kLoopDetectors, run.detector)) +
-                  ": its keypoints are triangulated, so --method must be triangulate (or unset), "
-                  "not " +
-                  std::string(name_of(tracker::kTrackMethods, track.method)));
-    }
+    if (const std::string why = detector_method_conflict(run); !why.empty()) throw Error(why);
     track.method = tracker::TrackMethod::triangulate;
     track.triangulate.detections = out / "detections.json";
   }
@@ -80,6 +75,10 @@ LoopResult run_closed_loop(const LoopRun& run, const fs::path& out) {
   announce(run.quiet, stages, stages, "validate");
   t = std::chrono::steady_clock::now();
   r.validate = validate_dataset(r.dataset, out / "track", out / "report", validate);
+  if (detect) {
+    r.keypoints2d =
+        validate_detections(r.dataset, track.triangulate.detections, out / "report2d", {});
+  }
   r.validate_s = seconds_since(t);
   return r;
 }
@@ -114,6 +113,10 @@ std::string loop_summary_text(const LoopResult& r) {
   s += buf;
   s += "metrics:\n" + metrics_summary_text(r.validate.evaluation);
   s += "report: " + r.validate.report_html.string() + "\n";
+  if (r.keypoints2d) {
+    s += "2D keypoints of the detector:\n" + keypoint_summary_text(r.keypoints2d->scores);
+    s += "2D report: " + r.keypoints2d->html.string() + "\n";
+  }
   return s;
 }
 
@@ -137,6 +140,16 @@ void finish_loop_options(LoopRun& run, const LoopCliOptions& cli) {
   cli.scoring.apply(run.validate);
 }
 
+std::string detector_method_conflict(const LoopRun& run) {
+  if (run.detector == LoopDetector::none || run.track.method == tracker::TrackMethod::automatic ||
+      run.track.method == tracker::TrackMethod::triangulate) {
+    return "";
+  }
+  return "--detector " + std::string(name_of(kLoopDetectors, run.detector)) +
+         ": its keypoints are triangulated, so --method must be triangulate (or unset), not " +
+         std::string(name_of(tracker::kTrackMethods, run.track.method));
+}
+
 LoopRun loop_run_of(const LoopConfig& c, const fs::path& sweep_file, bool quiet) {
   LoopRun run;
   run.scene = c.scene;
@@ -147,6 +160,22 @@ LoopRun loop_run_of(const LoopConfig& c, const fs::path& sweep_file, bool quiet)
   run.validate.failure_threshold_mm = c.failure_threshold_mm;
   run.quiet = quiet;
   apply_sweep_track_options(c.track_options, sweep_file, run.track);
+  if (!c.detector.name.empty()) {
+    const auto* d = std::find_if(kLoopDetectors.begin(), kLoopDetectors.end(),
+                                 [&](const auto& e) { return e.first == c.detector.name; });
+    if (d == kLoopDetectors.end()) {
+      throw_input_error(
+          sweep_file, c.detector.line, "detector",
+          "unknown detector '" + c.detector.name + "'; expected " + choices_text(kLoopDetectors));
+    }
+    run.detector = d->second;
+    run.truth_noise = {c.detector.noise_px, c.detector.seed};
+    if (const std::string why = detector_method_conflict(run); !why.empty()) {
+      throw_input_error(sweep_file, c.detector.line, "detector",
+                        "track.method must be triangulate (or unset): the detector's keypoints "
+                        "are triangulated");
+    }
+  }
   return run;
 }
 

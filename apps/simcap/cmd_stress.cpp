@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include "apps/simcap/closed_loop.h"
@@ -16,6 +17,7 @@ namespace {
 
 struct StressArgs {
   fs::path sweep, out;
+  std::optional<int> frames;  // replaces the file's frames (a quick look at a long sweep)
   bool keep_datasets = false;
   bool quiet = false;
 };
@@ -29,7 +31,8 @@ RenderKey render_key(const LoopConfig& c) {
 }
 
 int run_stress(const StressArgs& args) {
-  const SweepSpec spec = load_sweep(args.sweep);
+  SweepSpec spec = load_sweep(args.sweep);
+  if (args.frames) spec.base.frames = *args.frames;
   const std::vector<SweepPoint> points = sweep_points(spec);
   // Every point's scene and tracker options are checked before the first one runs.
   for (const auto& p : points) {
@@ -46,6 +49,10 @@ int run_stress(const StressArgs& args) {
     SweepOutcome o;
     o.evaluation = r.validate.evaluation;
     o.report = r.validate.report_html;
+    if (r.keypoints2d) {
+      o.keypoints2d = r.keypoints2d->scores;
+      o.report2d = r.keypoints2d->html;
+    }
     o.render_s = r.render_s;
     o.track_s = r.track_s;
     o.validate_s = r.validate_s;
@@ -83,6 +90,9 @@ void add_stress(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", args.out,
                   "Output folder: table.csv, table.html, mpjpe.svg, timings.csv, points/")
       ->required();
+  cmd->add_option("--frames", args.frames,
+                  "Render N frames per point instead of the sweep file's frames (a quick run)")
+      ->check(CLI::PositiveNumber);
   cmd->add_flag("--keep-datasets", args.keep_datasets,
                 "Keep each point's rendered dataset (by default only tracks and reports stay)");
   cmd->add_flag("-q,--quiet", args.quiet, "No progress on stderr");
@@ -90,12 +100,16 @@ void add_stress(CLI::App& app, Action& action) {
       "A sweep file names a base scene, frames and tracker options, and what to vary: scene keys\n"
       "(rig.count: [2, 3, 4]), the scene file, or tracker options (track.silhouettes). Points\n"
       "that render the same scene share one rendered dataset. A point that fails is a row of the\n"
-      "table; the command exits 1 only when every point failed.\n"
+      "table; the command exits 1 only when every point failed. A `detector:` (truth-noise or\n"
+      "mediapipe) feeds 2D keypoints to the triangulate tracker; the tables then show its 2D\n"
+      "scores by visibility class too.\n"
       "Examples:\n"
       "  simcap stress stress/cameras.yaml -o out/stress-cameras\n"
       "  simcap stress stress/occlusion.yaml -o out/stress-occlusion\n"
       "  simcap stress stress/silhouettes.yaml -o out/stress-silhouettes\n"
-      "  simcap stress stress/motions.yaml -o out/stress-motions");
+      "  simcap stress stress/motions.yaml -o out/stress-motions\n"
+      "  simcap stress stress/detectors.yaml -o out/stress-detectors\n"
+      "  simcap stress stress/detectors.yaml -o out/stress-detectors-quick --frames 20");
   cmd->callback([&action] { action = [] { return run_stress(args); }; });
 }
 

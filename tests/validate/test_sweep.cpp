@@ -14,6 +14,7 @@
 #include "tests/support/error_of.h"
 #include "tests/support/temp_dir.h"
 #include "validate/sweep.h"
+#include "validate/visibility.h"
 
 namespace simcap {
 namespace {
@@ -89,6 +90,36 @@ vary:
   EXPECT_EQ(points[1].labels[0], "other");
 }
 
+TEST(Sweep, DetectorIsABaseSettingOrAnAxis) {
+  TempDir dir;
+  const auto points = sweep_points(load_sweep(write_sweep(dir, R"(scene: ../scenes/room.yaml
+track: {method: triangulate}
+detector: {name: truth-noise, noise_px: 2, seed: 5}
+vary:
+  - name: detector
+    cases:
+      - {label: noisier, detector.noise_px: 4}
+      - {label: mp, detector.name: mediapipe}
+)")));
+  ASSERT_EQ(points.size(), 2u);
+  const DetectorConfig& a = points[0].config.detector;
+  EXPECT_EQ(a.name, "truth-noise");
+  EXPECT_EQ(a.line, 3);
+  EXPECT_EQ(a.noise_px, 4.0);
+  EXPECT_EQ(a.seed, 5u);
+  const DetectorConfig& b = points[1].config.detector;
+  EXPECT_EQ(b.name, "mediapipe");
+  EXPECT_EQ(b.line, 8);
+  EXPECT_EQ(b.noise_px, 2.0);
+  // A scalar names the detector alone.
+  const auto plain = sweep_points(load_sweep(write_sweep(
+      dir,
+      "scene: ../scenes/room.yaml\ndetector: mediapipe\nvary: [{parameter: frames, values: "
+      "[2]}]\n")));
+  EXPECT_EQ(plain[0].config.detector.name, "mediapipe");
+  EXPECT_EQ(plain[0].config.detector.line, 2);
+}
+
 TEST(Sweep, BadFilesAreNamed) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"scene: ../scenes/room.yaml\nframs: 3\nvary: [{parameter: rig.count, values: [1]}]\n",
@@ -108,6 +139,17 @@ TEST(Sweep, BadFilesAreNamed) {
       {"scene: ../scenes/room.yaml\nvary:\n  - parameter: set\n    values: [1]\n",
        "sweep.yaml:4: set: cannot be varied"},
       {"scene: [unclosed\n", "sweep.yaml:"},
+      {"scene: ../scenes/room.yaml\ndetector:\n  name: mediapipe\n  noise: 2\n"
+       "vary: [{parameter: rig.count, values: [1]}]\n",
+       "sweep.yaml:4: detector.noise: unknown detector key; expected name, noise_px or seed"},
+      {"scene: ../scenes/room.yaml\nvary:\n  - parameter: detector.noise_px\n    values: [1, -2]\n",
+       "sweep.yaml:4: detector.noise_px: expected a number >= 0"},
+      {"scene: ../scenes/room.yaml\ndetector: {name: truth-noise, seed: x}\n"
+       "vary: [{parameter: rig.count, values: [1]}]\n",
+       "sweep.yaml:2: detector.seed: expected a non-negative integer"},
+      {"scene: ../scenes/room.yaml\ndetector: [mediapipe]\nvary: [{parameter: rig.count, values: "
+       "[1]}]\n",
+       "sweep.yaml:2: detector: expected a map of key: value"},
   };
   for (const auto& [text, expected] : cases) {
     TempDir dir;
@@ -120,8 +162,9 @@ TEST(Sweep, BadFilesAreNamed) {
 }
 
 TEST(Sweep, ShippedSweepsLoad) {
-  for (const char* name : {"cameras.yaml", "monocular.yaml", "motions.yaml", "occlusion.yaml",
-                           "silhouettes.yaml", "tracker.yaml"}) {
+  for (const char* name :
+       {"cameras.yaml", "detectors.yaml", "detectors_height.yaml", "detectors_occlusion.yaml",
+        "monocular.yaml", "motions.yaml", "occlusion.yaml", "silhouettes.yaml", "tracker.yaml"}) {
     const SweepSpec spec = load_sweep(fs::path(SIMCAP_SOURCE_DIR) / "stress" / name);
     EXPECT_GE(sweep_points(spec).size(), 2u) << name;
   }
@@ -134,6 +177,14 @@ TEST(Sweep, ShippedSweepsLoad) {
       sweep_points(load_sweep(fs::path(SIMCAP_SOURCE_DIR) / "stress" / "monocular.yaml"));
   ASSERT_EQ(monocular.size(), 96u);
   EXPECT_EQ(monocular[1].labels, (std::vector<std::string>{"front 2.6 m", "raise", "200"}));
+  // 5 camera counts x 2 detectors, the detector varying fastest.
+  const auto detectors =
+      sweep_points(load_sweep(fs::path(SIMCAP_SOURCE_DIR) / "stress" / "detectors.yaml"));
+  ASSERT_EQ(detectors.size(), 10u);
+  EXPECT_EQ(detectors[0].config.detector.name, "truth-noise");
+  EXPECT_EQ(detectors[0].config.detector.noise_px, 2.0);
+  EXPECT_EQ(detectors[9].config.detector.name, "mediapipe");
+  EXPECT_EQ(detectors[9].config.scene_overrides.back(), "rig.count=8");
 }
 
 // A stand-in loop: every joint is 90/count mm off along x; the count 3 point fails.
@@ -226,6 +277,79 @@ vary:
   EXPECT_EQ(mean, (std::vector<std::string>{"mean", "", "0.0", "100.0%", "0.0%", "", ""}));
   EXPECT_EQ(words(row("worst")), (std::vector<std::string>{"worst", "45.0", "0.0", "100.0%", "0.0%",
                                                            joint, "45.0", "0.5"}))
+      << text;
+}
+
+// A stand-in loop with a 2D detector: 10 visible keypoints, 8 detected 3 px off; 4
+// scene-occluded ones, 2 detected 9 px off.
+SweepOutcome fake_detector_loop(const SweepPoint& point, const fs::path& dir) {
+  SweepOutcome o = fake_loop(point, dir);
+  KeypointScores k;
+  k.coco.ap = 0.5;
+  KeypointGroup& visible = k.by_visibility[static_cast<int>(VisibilityLabel::visible)];
+  visible.keypoints = 10;
+  visible.detected = 8;
+  visible.errors_px.assign(8, 3.0);
+  KeypointGroup& hidden = k.by_visibility[static_cast<int>(VisibilityLabel::scene_occluded)];
+  hidden.keypoints = 4;
+  hidden.detected = 2;
+  hidden.errors_px.assign(2, 9.0);
+  k.all.add(visible);
+  k.all.add(hidden);
+  o.keypoints2d = k;
+  o.report2d = dir / "report2d" / "report.html";
+  return o;
+}
+
+TEST(Sweep, DetectorPointsHave2dColumns) {
+  TempDir dir;
+  const SweepSpec spec = load_sweep(write_sweep(dir, R"(scene: ../scenes/room.yaml
+track: {method: triangulate}
+detector: truth-noise
+vary:
+  - {name: cameras, parameter: rig.count, values: [2, 3]}
+)"));
+  const auto outcomes = run_sweep(spec, dir / "out", fake_detector_loop, true);
+  std::vector<std::string> columns = {
+      "point",       "cameras",        "status",           "frames",
+      "mpjpe_mm",    "pa_mpjpe_mm",    "pck_50mm",         "pck_100mm",
+      "pck_150mm",   "rmse_mean_mm",   "wrists_elbows_mm", "failed_fraction",
+      "worst_joint", "worst_joint_mm", "report",           "ap_2d"};
+  for (const char* c : {"in_frame", "visible", "self_occluded", "scene_occluded"}) {
+    for (const char* m : {"_miss_rate", "_median_px", "_pck_torso_0.2", "_swap_rate"}) {
+      columns.push_back(std::string(c) + m);
+    }
+  }
+  columns.push_back("report2d");
+  CsvReader csv(dir / "out" / "table.csv", columns);
+  ASSERT_TRUE(csv.next());
+  EXPECT_NEAR(csv.number(15), 0.5, 1e-9);
+  EXPECT_NEAR(csv.number(16), 4.0 / 14, 1e-4);  // in frame: 4 of 14 missed
+  EXPECT_NEAR(csv.number(17), 3.0, 1e-9);       // median of eight 3s and two 9s
+  EXPECT_NEAR(csv.number(20), 0.2, 1e-9);       // visible: 2 of 10 missed
+  EXPECT_NEAR(csv.number(21), 3.0, 1e-9);
+  EXPECT_EQ(csv.text(24), "");  // no self-occluded keypoint: empty cells
+  EXPECT_NEAR(csv.number(28), 0.5, 1e-9);
+  EXPECT_NEAR(csv.number(29), 9.0, 1e-9);
+  EXPECT_EQ(csv.text(32), "points/00_2/report2d/report.html");
+  ASSERT_TRUE(csv.next());  // the failed point keeps the columns, empty
+  EXPECT_EQ(csv.text(2), "error: tracker: too few cameras; see log");
+  EXPECT_EQ(csv.text(15), "");
+  EXPECT_FALSE(csv.next());
+
+  const std::string html = read_text(dir / "out" / "table.html");
+  EXPECT_NE(html.find("2D keypoints of the detector"), std::string::npos);
+  EXPECT_NE(html.find("href=\"points/00_2/report2d/report.html\""), std::string::npos);
+  EXPECT_NE(html.find("detector truth-noise (2.0 px, seed 1)"), std::string::npos);
+  const std::string text = sweep_table_text(spec, sweep_points(spec), outcomes);
+  EXPECT_NE(text.find("px scene"), std::string::npos) << text;
+  const size_t row = text.find("\n  2 ", text.find("2D keypoints"));
+  ASSERT_NE(row, std::string::npos) << text;
+  std::istringstream in(text.substr(row, text.find('\n', row + 1) - row));
+  std::vector<std::string> w;
+  for (std::string x; in >> x;) w.push_back(x);
+  EXPECT_EQ(w, (std::vector<std::string>{"2", "0.500", "3.00", "3.00", "-", "9.00", "28.6%",
+                                         "20.0%", "-", "50.0%", "-"}))
       << text;
 }
 

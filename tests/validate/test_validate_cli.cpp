@@ -2,6 +2,7 @@
 // --fail-above, messages naming bad inputs, and small closed loops and sweeps end to end.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
@@ -87,6 +88,29 @@ TEST(ValidateCli, BadSweepFileExitsOne) {
   EXPECT_EQ(run_simcap("stress " + quoted(dir / "sweep.yaml") + " -o " + quoted(dir / "out"), &out),
             1);
   EXPECT_NE(out.find("--traversal: unknown value 'sideways'"), std::string::npos) << out;
+
+  // A detector the loop does not know is named with its line, before anything runs.
+  write_text_atomic(dir / "sweep.yaml",
+                    "scene: " + (fs::path(SIMCAP_SOURCE_DIR) / "scenes" / "studio8.yaml").string() +
+                        "\nframes: 2\ntrack: {method: triangulate}\nvary:\n  - name: det\n"
+                        "    cases:\n      - {detector.name: truth-noise}\n"
+                        "      - {detector.name: openpose}\n");
+  EXPECT_EQ(run_simcap("stress " + quoted(dir / "sweep.yaml") + " -o " + quoted(dir / "out"), &out),
+            1);
+  EXPECT_NE(out.find("sweep.yaml:8: detector: unknown detector 'openpose'; expected none, "
+                     "mediapipe or truth-noise"),
+            std::string::npos)
+      << out;
+  EXPECT_FALSE(fs::exists(dir / "out" / "table.csv"));
+  // ... and so is one with a tracker that reads the images.
+  write_text_atomic(dir / "sweep.yaml",
+                    "scene: " + (fs::path(SIMCAP_SOURCE_DIR) / "scenes" / "studio8.yaml").string() +
+                        "\nframes: 2\ntrack: {method: moschini}\ndetector: truth-noise\n"
+                        "vary: [{parameter: rig.count, values: [3]}]\n");
+  EXPECT_EQ(run_simcap("stress " + quoted(dir / "sweep.yaml") + " -o " + quoted(dir / "out"), &out),
+            1);
+  EXPECT_NE(out.find("sweep.yaml:4: detector: track.method must be triangulate"), std::string::npos)
+      << out;
 }
 
 TEST(LoopCli, RendersTracksAndValidates) {
@@ -176,6 +200,59 @@ TEST(StressCli, SweepWritesOneRowPerPoint) {
   for (const char* word : {"worst joint", "frames/s", "\n  mean ", "\n  worst "}) {
     EXPECT_NE(out.find(word), std::string::npos) << word << "\n" << out;
   }
+}
+
+TEST(StressCli, TruthNoiseDetectorIsTriangulatedPerPoint) {
+  TempDir dir;
+  write_text_atomic(
+      dir / "sweep.yaml",
+      "scene: " + (fs::path(SIMCAP_SOURCE_DIR) / "scenes" / "studio8.yaml").string() +
+          "\nframes: 3\nset: {rig.resolution: [160, 120]}\ntrack: {method: triangulate}\n"
+          "vary:\n  - {name: cameras, parameter: rig.count, values: [3, 4]}\n"
+          "  - name: detector\n    cases:\n"
+          "      - {label: exact, detector.name: truth-noise, detector.noise_px: 0}\n"
+          "      - {label: 2 px, detector.name: truth-noise, detector.noise_px: 2}\n");
+  std::string out;
+  ASSERT_EQ(run_simcap("stress " + quoted(dir / "sweep.yaml") + " -o " + quoted(dir / "out") +
+                           " -q --frames 2",
+                       &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("2D keypoints of the detector"), std::string::npos) << out;
+  std::vector<std::string> columns = {"point",           "cameras",      "detector",
+                                      "status",          "frames",       "mpjpe_mm",
+                                      "pa_mpjpe_mm",     "pck_50mm",     "pck_100mm",
+                                      "pck_150mm",       "rmse_mean_mm", "wrists_elbows_mm",
+                                      "failed_fraction", "worst_joint",  "worst_joint_mm",
+                                      "report",          "ap_2d"};
+  for (const char* c : {"in_frame", "visible", "self_occluded", "scene_occluded"}) {
+    for (const char* m : {"_miss_rate", "_median_px", "_pck_torso_0.2", "_swap_rate"}) {
+      columns.push_back(std::string(c) + m);
+    }
+  }
+  columns.push_back("report2d");
+  const auto column = [&](const std::string& name) {
+    return static_cast<int>(std::find(columns.begin(), columns.end(), name) - columns.begin());
+  };
+  CsvReader csv(dir / "out" / "table.csv", columns);
+  int rows = 0;
+  while (csv.next()) {
+    EXPECT_EQ(csv.text(column("status")), "ok");
+    EXPECT_EQ(csv.number(column("frames")), 2);  // --frames replaced the file's 3
+    const double px = csv.number(column("visible_median_px"));
+    // Exact keypoints are scored 0 px off; 2 px per coordinate is ~2.4 px (Rayleigh median).
+    if (rows % 2 == 0) {
+      EXPECT_EQ(px, 0.0);
+      EXPECT_NEAR(csv.number(column("ap_2d")), 1.0, 1e-9);
+    } else {
+      EXPECT_GT(px, 1.0);
+      EXPECT_LT(px, 4.0);
+    }
+    EXPECT_LT(csv.number(column("mpjpe_mm")), 60.0);
+    EXPECT_TRUE(fs::exists(dir / "out" / csv.text(column("report2d"))));
+    ++rows;
+  }
+  EXPECT_EQ(rows, 4);
 }
 
 }  // namespace
