@@ -148,6 +148,11 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
                   "multiview: the camera whose calibration posture starts the others")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  cmd->add_option("--surface-quantile", o.sik.surface_quantile,
+                  "sik --effectors depth: quantile of the depths under a tracked part read as its "
+                  "surface (0: the nearest, 0.5: the median)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_option("--sik-noise", o.sik.noise_sigma_m,
                   "sik: standard deviation of the noise added to the end-effectors, metres")
       ->check(CLI::Range(0.0, 1.0))

@@ -5,7 +5,8 @@
 
 namespace simcap::tracker {
 
-std::optional<double> median_depth(const cv::Mat& depth, const std::vector<cv::Point>& points) {
+std::optional<double> depth_quantile(const cv::Mat& depth, const std::vector<cv::Point>& points,
+                                     double quantile) {
   std::vector<float> z;
   for (const cv::Point& p : points) {
     const int x = p.x, y = p.y;
@@ -14,8 +15,10 @@ std::optional<double> median_depth(const cv::Mat& depth, const std::vector<cv::P
     if (std::isfinite(d) && d > 0) z.push_back(d);
   }
   if (z.empty()) return std::nullopt;
-  std::nth_element(z.begin(), z.begin() + z.size() / 2, z.end());
-  return z[z.size() / 2];
+  const auto k =
+      std::min(z.size() - 1, static_cast<size_t>(quantile * static_cast<double>(z.size())));
+  std::nth_element(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(k), z.end());
+  return z[k];
 }
 
 std::vector<cv::Point> mask_samples(const cv::Mat& mask, cv::Point2d centre, int half, int step) {

@@ -1,5 +1,5 @@
-// Reading a part's distance off a depth image (the thesis' "single depth camera"): the median
-// z-depth under the part's tracked features, robust to a feature on the background.
+// Reading a part's distance off a depth image (the thesis' "single depth camera"): a quantile of
+// the z-depth under the part's pixels, robust to a few pixels on the background.
 #pragma once
 
 #include <Eigen/Core>
@@ -11,9 +11,10 @@
 
 namespace simcap::tracker {
 
-// Median of the finite values of `depth` (CV_32FC1, camera z in metres, +inf: nothing) at the
-// pixels nearest `points`; nullopt when none is finite.
-std::optional<double> median_depth(const cv::Mat& depth, const std::vector<cv::Point>& points);
+// The `quantile` (0: nearest, 0.5: median) of the finite values of `depth` (CV_32FC1, camera z
+// in metres, +inf: nothing) at the pixels nearest `points`; nullopt when none is finite.
+std::optional<double> depth_quantile(const cv::Mat& depth, const std::vector<cv::Point>& points,
+                                     double quantile);
 
 // Grid pixels of `mask` (CV_8UC1) within `half` px of `centre` (a square), every `step` px.
 std::vector<cv::Point> mask_samples(const cv::Mat& mask, cv::Point2d centre, int half, int step);

@@ -39,6 +39,12 @@ struct SikTrackOptions {
   tracker::SilhouetteMethod silhouettes = tracker::SilhouetteMethod::gt;
   int camera = 0;
   tracker::CameraTrackerParams tracking;
+  // --effectors depth reads a part's surface at this quantile of the depths under its pixels
+  // (0: the nearest). A hand pointing at the camera is seen end-on over its forearm, whose
+  // median depth lies 20-35 cm behind the hand; 0.1 fixes that (gest1: 45.4 -> 43.4 mm) but
+  // the changed depths change the occlusion rule's choices and lose a hand for good on gest2
+  // and gest3 (UNZUETA.md), so the median stays.
+  double surface_quantile = 0.5;
   SikPelvisWeights pelvis_weights;
   int max_frames = -1;  // the first frames only; < 0: every frame
   bool quiet = false;

@@ -273,7 +273,7 @@ class Pipeline {
         const auto px = cam.project_camera(q);
         const int half = static_cast<int>(0.03 * r.person_px);
         const auto z =
-            median_depth(im.depth, mask_samples(im.silhouette, {px.x(), px.y()}, half, 1));
+            depth_quantile(im.depth, mask_samples(im.silhouette, {px.x(), px.y()}, half, 1), 0.5);
         if (z) p[index_of(e)] = point_at_depth(cam, {px.x(), px.y()}, *z);
       }
     }
@@ -339,7 +339,8 @@ class Pipeline {
             e == Effector::pelvis ? mask_samples(images[0].silhouette, px,
                                                  static_cast<int>(kPelvisWindow * t.person_px()), 2)
                                   : t.surface(e);
-        z = median_depth(images[0].depth, at);
+        z = depth_quantile(images[0].depth, at,
+                           e == Effector::pelvis ? 0.5 : options_.surface_quantile);
       }
       const Eigen::Vector3d ray = camera(c).unproject({px.x, px.y});
       const double behind =

@@ -1,11 +1,12 @@
 // The building blocks of Unzueta's tracking from pixels against independent references: DLT
 // triangulation against OpenCV's cv::triangulatePoints and cv::projectPoints, the point Kalman
-// filter against the filter equations computed by hand, and CFOF following a textured patch
-// (also while hidden, carried with the body's motion).
+// filter against the filter equations computed by hand, CFOF following a textured patch
+// (also while hidden, carried with the body's motion) and depth quantiles against a sort.
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <limits>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/imgproc.hpp>
@@ -13,6 +14,7 @@
 
 #include "tracker/common/triangulation.h"
 #include "tracker/unzueta/cfof.h"
+#include "tracker/unzueta/depth_lookup.h"
 #include "tracker/unzueta/point_kalman.h"
 
 namespace simcap::tracker {
@@ -81,6 +83,28 @@ TEST(Triangulation, AgreesWithOpenCvTriangulatePoints) {
   }
   const auto cam = ring();
   EXPECT_FALSE(triangulate({{&cam[0], Eigen::Vector2d(320, 240)}}));
+}
+
+TEST(DepthLookup, QuantileAgainstASortSkippingEmptyAndOutsidePixels) {
+  // A hand end-on over its forearm: 40 px at 2.0-2.39 m, 4 background pixels (+inf), one
+  // point outside the image.
+  cv::Mat depth(10, 10, CV_32FC1, cv::Scalar(std::numeric_limits<float>::infinity()));
+  std::vector<cv::Point> at;
+  std::vector<float> z;
+  for (int i = 0; i < 40; ++i) {
+    const cv::Point p(i % 10, i / 10);
+    depth.at<float>(p) = 2.0f + 0.01f * static_cast<float>((i * 7) % 40);
+    at.push_back(p);
+    z.push_back(depth.at<float>(p));
+  }
+  for (int x = 0; x < 4; ++x) at.emplace_back(x, 9);
+  at.emplace_back(12, 3);
+  std::sort(z.begin(), z.end());
+  EXPECT_FLOAT_EQ(*depth_quantile(depth, at, 0.0), z.front());
+  EXPECT_FLOAT_EQ(*depth_quantile(depth, at, 0.1), z[4]);
+  EXPECT_FLOAT_EQ(*depth_quantile(depth, at, 0.5), z[20]);
+  EXPECT_FLOAT_EQ(*depth_quantile(depth, at, 1.0), z.back());
+  EXPECT_FALSE(depth_quantile(depth, {{0, 9}, {-1, 0}}, 0.5));
 }
 
 TEST(PointKalman, MatchesTheFilterEquationsByHand) {
