@@ -79,6 +79,10 @@ void add_gestures(CLI::App& app, Action& action) {
   cmd->add_option("--min-frames", o.spotting.min_frames, "Shorter spotted stretches are dropped")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
+  cmd->add_option("--drop-largest", o.spotting.drop_largest,
+                  "The history's mean leaves out its N largest pseudo-energies (0: the thesis)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 99));
   cmd->add_option("--states", o.states, "Spline-resampled states per gesture (Table 12)")
       ->capture_default_str()
       ->check(CLI::Range(2, 1000));

@@ -123,6 +123,7 @@ GestureResults run_gestures(const std::vector<GestureSource>& sources, const fs:
                      {"history_frames", options.spotting.history},
                      {"threshold", options.spotting.threshold},
                      {"min_frames", options.spotting.min_frames},
+                     {"drop_largest", options.spotting.drop_largest},
                      {"states", options.states},
                      {"size", options.size},
                      {"k", options.k},

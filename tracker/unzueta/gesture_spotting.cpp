@@ -1,6 +1,7 @@
 #include "tracker/unzueta/gesture_spotting.h"
 
 #include <algorithm>
+#include <numeric>
 
 namespace simcap::tracker {
 
@@ -22,12 +23,13 @@ std::vector<Segment> spot_gestures(const std::vector<double>& psE, const Spottin
   std::vector<Segment> out;
   const int n = static_cast<int>(psE.size());
   double sum = 0;
-  bool active = false;
+  bool active = false, confirmed = false;
   int start = 0, delay = 0;
   auto close = [&](int end) {
-    if (end - start + 1 >= params.min_frames) out.push_back({start, end});
+    if (confirmed && end - start + 1 >= params.min_frames) out.push_back({start, end});
     active = false;
   };
+  std::vector<double> window;
   for (int t = 0; t < n; ++t) {
     sum += psE[t];
     if (t >= params.history) sum -= psE[t - params.history];
@@ -36,8 +38,18 @@ std::vector<Segment> spot_gestures(const std::vector<double>& psE, const Spottin
       delay = spotting_delay(psE, t, params.history, params.threshold);
       start = t - delay;
       active = true;
+      confirmed = false;
     } else if (active && mean < params.threshold) {
       close(std::max(start, t - delay));
+    }
+    if (active && !confirmed) {
+      window.assign(psE.begin() + std::max(0, t - params.history + 1), psE.begin() + t + 1);
+      const auto kept =
+          std::max<std::ptrdiff_t>(1, std::ssize(window) - std::max(0, params.drop_largest));
+      std::nth_element(window.begin(), window.begin() + (kept - 1), window.end());
+      confirmed =
+          std::accumulate(window.begin(), window.begin() + kept, 0.0) / static_cast<double>(kept) >=
+          params.threshold;
     }
   }
   if (active) close(n - 1);

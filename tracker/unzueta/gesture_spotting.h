@@ -16,6 +16,12 @@ struct SpottingParams {
   // Shorter spotted stretches are dropped (simcap's; not in the thesis): 10 frames, the
   // shortest gesture of scenes/gestures.yaml at 30 frames/s.
   int min_frames = 10;
+  // A stretch counts only if, somewhere in it, the history's mean without its this many largest
+  // values also reaches the threshold (simcap's; 0 is the thesis): a tracked hand's depth that
+  // jumps between two surfaces in one frame (a hand pointing at the camera read on its forearm,
+  // then on itself) is one huge psE, whose tenth alone crosses the threshold for n frames; a
+  // gesture's energy lasts. The stretch's ends are the thesis' either way.
+  int drop_largest = 1;
 };
 
 // psE[i] = |x[i] - x[i-1]|^2 fps^2 / 2; psE[0] = 0.
@@ -29,7 +35,8 @@ struct Segment {
   int first = 0, last = 0;  // indices into the signal, inclusive
 };
 
-// The stretches during which the mean pseudo-energy history is above the threshold, both ends
+// The stretches during which the mean pseudo-energy history is at or above the threshold (and
+// confirmed without its `drop_largest` largest values), both ends
 // moved back by the delay Algorithm 14 gives where the stretch is first detected. A stretch still
 // open at the end of the signal ends at its last index.
 std::vector<Segment> spot_gestures(const std::vector<double>& psE, const SpottingParams& params);

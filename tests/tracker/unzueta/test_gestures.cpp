@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <random>
 
 #include "models/humanoid.h"
@@ -55,6 +57,7 @@ TEST(GestureSpotting, KnownIntervalsWithADirectionChange) {
   e[64] = e[65] = 0.0;
   SpottingParams p;
   p.threshold = 0.18;
+  p.drop_largest = 0;  // the thesis' mean
   const auto s = spot_gestures(e, p);
   ASSERT_EQ(s.size(), 2u);
   EXPECT_EQ(s[0].first, 49);
@@ -67,6 +70,45 @@ TEST(GestureSpotting, KnownIntervalsWithADirectionChange) {
   ASSERT_EQ(t.size(), 1u);
   EXPECT_EQ(t[0].first, 29);
   EXPECT_EQ(t[0].last, 39);
+}
+
+TEST(GestureSpotting, OneFrameJumpIsNotAGestureWithoutItsLargestValue) {
+  // A still hand whose tracked position jumps once (psE 6 at frame 40: a 0.12 m step at 30
+  // frames/s) besides a gesture at [100, 129]. The thesis' mean reads the jump as an 11-frame
+  // stretch (6 / 10 >= 0.18 from t = 40 to 49, moved back by Alg. 14's delay of 1); without each
+  // history's largest value it never reaches the threshold, so the stretch is dropped. The
+  // gesture (mean crossing at t = 104, Alg. 14's delay 5, below again at t = 135) is confirmed
+  // at t = 105 (5 x 0.36 / 9) and keeps the thesis' ends [99, 130].
+  auto e = pulses(200, {{100, 129}}, 0.36);
+  e[40] = 6.0;
+  SpottingParams p;
+  p.threshold = 0.18;
+  p.drop_largest = 0;
+  const auto thesis = spot_gestures(e, p);
+  ASSERT_EQ(thesis.size(), 2u);
+  EXPECT_EQ(thesis[0].first, 39);
+  EXPECT_EQ(thesis[0].last, 49);
+  EXPECT_EQ(thesis[1].first, 99);
+  EXPECT_EQ(thesis[1].last, 130);
+  p.drop_largest = 1;
+  const auto robust = spot_gestures(e, p);
+  ASSERT_EQ(robust.size(), 1u);
+  EXPECT_EQ(robust[0].first, 99);
+  EXPECT_EQ(robust[0].last, 130);
+  // Brute force: the mean of the 9 smallest of each 10-frame history.
+  auto trimmed = [&](int t) {
+    std::vector<double> w(e.begin() + t - 9, e.begin() + t + 1);
+    std::sort(w.begin(), w.end());
+    return std::accumulate(w.begin(), w.end() - 1, 0.0) / 9.0;
+  };
+  for (int t = 40; t <= 49; ++t) EXPECT_LT(trimmed(t), p.threshold) << t;
+  EXPECT_LT(trimmed(104), p.threshold);
+  EXPECT_GE(trimmed(105), p.threshold);
+  // Two jumps in one history are two largest values: dropping two discards them as well.
+  e[44] = 6.0;
+  EXPECT_EQ(spot_gestures(e, p).size(), 2u);
+  p.drop_largest = 2;
+  EXPECT_EQ(spot_gestures(e, p).size(), 1u);
 }
 
 TEST(GestureNormalization, ClampedSplineByHand) {
