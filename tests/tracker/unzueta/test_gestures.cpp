@@ -34,6 +34,15 @@ std::vector<double> pulses(int n, const std::vector<std::pair<int, int>>& on, do
   return e;
 }
 
+void expect_segments(const std::vector<Segment>& got,
+                     const std::vector<std::pair<int, int>>& want) {
+  ASSERT_EQ(got.size(), want.size());
+  for (size_t i = 0; i < want.size(); ++i) {
+    EXPECT_EQ(got[i].first, want[i].first) << i;
+    EXPECT_EQ(got[i].last, want[i].second) << i;
+  }
+}
+
 TEST(GestureSpotting, PseudoEnergyIsHalfTheSquaredSpeed) {
   const std::vector<Eigen::Vector3d> x = {{0, 0, 0}, {0.1, 0, 0}, {0.1, 0.2, 0}};
   const auto e = kinetic_pseudo_energy(x, 30.0);
@@ -58,18 +67,10 @@ TEST(GestureSpotting, KnownIntervalsWithADirectionChange) {
   SpottingParams p;
   p.threshold = 0.18;
   p.drop_largest = 0;  // the thesis' mean
-  const auto s = spot_gestures(e, p);
-  ASSERT_EQ(s.size(), 2u);
-  EXPECT_EQ(s[0].first, 49);
-  EXPECT_EQ(s[0].last, 80);
-  EXPECT_EQ(s[1].first, 149);
-  EXPECT_EQ(s[1].last, 170);
+  expect_segments(spot_gestures(e, p), {{49, 80}, {149, 170}});
   // A short twitch is not a gesture; one still open at the end closes there.
   p.min_frames = 8;
-  const auto t = spot_gestures(pulses(40, {{5, 7}, {30, 39}}, 0.36), p);
-  ASSERT_EQ(t.size(), 1u);
-  EXPECT_EQ(t[0].first, 29);
-  EXPECT_EQ(t[0].last, 39);
+  expect_segments(spot_gestures(pulses(40, {{5, 7}, {30, 39}}, 0.36), p), {{29, 39}});
 }
 
 TEST(GestureSpotting, OneFrameJumpIsNotAGestureWithoutItsLargestValue) {
@@ -84,17 +85,9 @@ TEST(GestureSpotting, OneFrameJumpIsNotAGestureWithoutItsLargestValue) {
   SpottingParams p;
   p.threshold = 0.18;
   p.drop_largest = 0;
-  const auto thesis = spot_gestures(e, p);
-  ASSERT_EQ(thesis.size(), 2u);
-  EXPECT_EQ(thesis[0].first, 39);
-  EXPECT_EQ(thesis[0].last, 49);
-  EXPECT_EQ(thesis[1].first, 99);
-  EXPECT_EQ(thesis[1].last, 130);
+  expect_segments(spot_gestures(e, p), {{39, 49}, {99, 130}});
   p.drop_largest = 1;
-  const auto robust = spot_gestures(e, p);
-  ASSERT_EQ(robust.size(), 1u);
-  EXPECT_EQ(robust[0].first, 99);
-  EXPECT_EQ(robust[0].last, 130);
+  expect_segments(spot_gestures(e, p), {{99, 130}});
   // Brute force: the mean of the 9 smallest of each 10-frame history.
   auto trimmed = [&](int t) {
     std::vector<double> w(e.begin() + t - 9, e.begin() + t + 1);
