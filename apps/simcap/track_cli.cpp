@@ -12,7 +12,7 @@ namespace simcap::cli {
 namespace {
 
 // Sweep keys and the options they set (sweep files name the voxel and noise with their unit).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 27> kSweepKeys{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 28> kSweepKeys{{
     {"method", "--method"},
     {"actor", "--actor"},
     {"silhouettes", "--silhouettes"},
@@ -40,6 +40,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 27> kSweepKe
     {"cutoff_hz", "--cutoff"},
     {"max_error_px", "--max-error"},
     {"swaps", "--swaps"},
+    {"bones", "--bones"},
 }};
 
 // "h1,h3", "all" or "none" -> the particle filter's switches; an error message otherwise.
@@ -238,6 +239,9 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
                   "reprojects farther than this, pixels (never below two views)")
       ->check(CLI::Range(0.5, 1000.0))
       ->capture_default_str();
+  add_choice(cmd, "--bones", t.bone_lengths, kOnOff,
+             "triangulate: on (every frame's keypoints moved onto the take's median bone "
+             "lengths: thighs, shanks, upper arms, forearms, pelvis) or off");
   add_choice(cmd, "--swaps", t.triangulation.repair_swaps, kOnOff,
              "triangulate: on (a view whose left/right labels of a pair triangulate clearly "
              "better exchanged is repaired) or off");

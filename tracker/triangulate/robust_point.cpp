@@ -34,6 +34,16 @@ Fit fit(const std::vector<DltView>& dlt, std::span<const KeypointObservation> vi
 
 }  // namespace
 
+Eigen::Matrix3d pixel_information(const Camera& camera, const Eigen::Vector3d& point) {
+  const Eigen::Vector3d x = camera.to_camera(point);
+  if (!(x.z() > 0)) return Eigen::Matrix3d::Zero();
+  Eigen::Matrix<double, 2, 3> j;
+  j << camera.K(0, 0) / x.z(), 0, -camera.K(0, 0) * x.x() / (x.z() * x.z()), 0,
+      camera.K(1, 1) / x.z(), -camera.K(1, 1) * x.y() / (x.z() * x.z());
+  j = j * camera.R;
+  return j.transpose() * j;
+}
+
 std::vector<double> reprojection_errors(const Eigen::Vector3d& point,
                                         std::span<const KeypointObservation> views,
                                         std::span<const Camera> cameras) {
@@ -82,6 +92,8 @@ std::optional<TriangulatedPoint> triangulate_robust(std::span<const KeypointObse
   TriangulatedPoint p{best.position, best.max_error, 0, excluded};
   for (int i : subset) {
     if (views[i].camera < 64) p.views |= std::uint64_t{1} << views[i].camera;
+    p.information += views[i].confidence * views[i].confidence *
+                     pixel_information(cameras[views[i].camera], best.position);
   }
   return p;
 }

@@ -25,6 +25,10 @@ struct TriangulatedPoint {
   double max_error_px = 0;  // largest reprojection error among the views kept
   std::uint64_t views = 0;  // bit c: camera c's observation was used (cameras 0..63)
   int excluded = 0;         // views dropped for their reprojection error
+  // Fisher information of the position under unit pixel noise scaled by the confidence: the sum
+  // over the views kept of JᵀJ·confidence², J the 2x3 pixel Jacobian of the (pinhole) projection.
+  // Its inverse is the point's covariance in px² units: large along a lone view's ray.
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
 };
 
 // nullopt when fewer than min_views confident observations remain or when even the best
@@ -35,6 +39,10 @@ struct TriangulatedPoint {
 std::optional<TriangulatedPoint> triangulate_robust(std::span<const KeypointObservation> views,
                                                     std::span<const Camera> cameras,
                                                     const RobustPointOptions& options = {});
+
+// JᵀJ of the pixel projection of `point` in `camera` (pinhole, distortion neglected): how much
+// one view pins the point down, per direction; zero behind the camera.
+Eigen::Matrix3d pixel_information(const Camera& camera, const Eigen::Vector3d& point);
 
 // Reprojection error of `point` in each view, pixels (infinite behind a camera).
 std::vector<double> reprojection_errors(const Eigen::Vector3d& point,

@@ -12,6 +12,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/progress.h"
+#include "tracker/triangulate/bone_lengths.h"
 #include "tracker/triangulate/butterworth.h"
 #include "tracker/triangulate/hanim_joints.h"
 #include "tracker/triangulate/unseen_keypoints.h"
@@ -193,12 +194,15 @@ TriangulationResult run_triangulation(const Dataset& ds, const TriangulateOption
   keypoints_csv << "frame,keypoint,views,excluded,max_error_px\n";
   swaps_csv << "frame,camera,keypoint,partner\n";
   std::vector<Keypoints3d> positions(n, Keypoints3d(layout.size()));
+  std::vector<std::vector<Eigen::Matrix3d>> information(
+      n, std::vector<Eigen::Matrix3d>(layout.size(), Eigen::Matrix3d::Zero()));
   for (size_t f = 0; f < n; ++f) {
     for (int k = 0; k < layout.size(); ++k) {
       const auto& p = poses[f].keypoints[k];
       keypoints_csv << frame_numbers[f] << ',' << layout.keypoints[k].name << ',';
       if (p) {
         positions[f][k] = p->position;
+        information[f][k] = p->information;
         keypoints_csv << std::popcount(p->views) << ',' << p->excluded << ',' << p->max_error_px;
         result.views_excluded += p->excluded;
       } else {
@@ -213,6 +217,12 @@ TriangulationResult run_triangulation(const Dataset& ds, const TriangulateOption
                 << layout.keypoints[partner[s.keypoint]].name << '\n';
     }
     result.swaps_repaired += static_cast<int>(poses[f].swaps.size());
+  }
+  if (o.bone_lengths) {
+    std::vector<Bone> bones = rigid_bones(layout);
+    measure_bone_lengths(bones, positions);
+    tbb::parallel_for(size_t{0}, n,
+                      [&](size_t f) { project_onto_bones(positions[f], information[f], bones); });
   }
   smooth(positions, o, ds.fps());
   for (const int k : place_unseen_keypoints(positions, layout)) {

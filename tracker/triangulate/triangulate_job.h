@@ -31,6 +31,9 @@ struct TriangulateOptions {
   // are filled; on by default: 37% lower MPJPE on every clip of the suite (TRIANGULATE.md).
   TemporalFilter filter = TemporalFilter::butterworth;
   double cutoff_hz = 6.0;  // Pose2Sim's default
+  // Every frame's keypoints moved onto the take's median bone lengths (bone_lengths.h) before
+  // gaps are filled and the low-pass runs.
+  bool bone_lengths = true;
   // gt: the actor is found in the first frame where the ground truth projects; automatic: the
   // most prominent person detected (person_association.h).
   InitMethod init = InitMethod::gt;
