@@ -92,8 +92,11 @@ std::optional<TriangulatedPoint> triangulate_robust(std::span<const KeypointObse
   TriangulatedPoint p{best.position, best.max_error, 0, excluded};
   for (int i : subset) {
     if (views[i].camera < 64) p.views |= std::uint64_t{1} << views[i].camera;
-    p.information += views[i].confidence * views[i].confidence *
-                     pixel_information(cameras[views[i].camera], best.position);
+    const double w = views[i].confidence * views[i].confidence;
+    p.information += w * pixel_information(cameras[views[i].camera], best.position);
+    if (const auto px = cameras[views[i].camera].project(best.position)) {
+      p.squared_error_px2 += w * (*px - views[i].pixel).squaredNorm();
+    }
   }
   return p;
 }

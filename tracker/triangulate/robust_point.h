@@ -29,6 +29,9 @@ struct TriangulatedPoint {
   // over the views kept of JᵀJ·confidence², J the 2x3 pixel Jacobian of the (pinhole) projection.
   // Its inverse is the point's covariance in px² units: large along a lone view's ray.
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  // Σ confidence² · reprojection error² over the views kept, px²: with 2·views − 3 degrees of
+  // freedom, what the pixel noise of the take is estimated from.
+  double squared_error_px2 = 0;
 };
 
 // nullopt when fewer than min_views confident observations remain or when even the best

@@ -1,6 +1,7 @@
 #include "tracker/triangulate/triangulate_job.h"
 
 #include <tbb/parallel_for.h>
+#include <Eigen/Dense>
 
 #include <algorithm>
 #include <bit>
@@ -15,6 +16,7 @@
 #include "tracker/triangulate/bone_lengths.h"
 #include "tracker/triangulate/butterworth.h"
 #include "tracker/triangulate/hanim_joints.h"
+#include "tracker/triangulate/rts_smoother.h"
 #include "tracker/triangulate/unseen_keypoints.h"
 
 namespace simcap::tracker {
@@ -60,6 +62,51 @@ std::vector<PersonKeypoints> truth_expectation(const Dataset& ds, const Keypoint
     }
   }
   return out;
+}
+
+// Each keypoint's pixel noise (σ², px²) pooled over the take from its reprojection residuals;
+// keypoints with fewer than 20 degrees of freedom take the pool of all keypoints. Never below
+// (0.05 px)²: exact detections would otherwise claim exact points.
+std::vector<double> pixel_variances(const std::vector<TriangulatedPose>& poses, int keypoints) {
+  std::vector<double> sum(keypoints + 1, 0.0), dof(keypoints + 1, 0.0);
+  for (const TriangulatedPose& pose : poses) {
+    for (int k = 0; k < keypoints; ++k) {
+      const auto& p = pose.keypoints[k];
+      const int d = p ? 2 * std::popcount(p->views) - 3 : 0;
+      if (d <= 0) continue;
+      for (const int i : {k, keypoints}) {
+        sum[i] += p->squared_error_px2;
+        dof[i] += d;
+      }
+    }
+  }
+  constexpr double kFloor = 0.05 * 0.05;
+  const double pooled = dof[keypoints] > 0 ? std::max(kFloor, sum[keypoints] / dof[keypoints]) : 1;
+  std::vector<double> out(keypoints, pooled);
+  for (int k = 0; k < keypoints; ++k) {
+    if (dof[k] >= 20) out[k] = std::max(kFloor, sum[k] / dof[k]);
+  }
+  return out;
+}
+
+// The Kalman/RTS smoother on every keypoint; gaps are smoothed through.
+void smooth_kalman(std::vector<Keypoints3d>& frames,
+                   const std::vector<std::vector<Eigen::Matrix3d>>& information,
+                   const std::vector<double>& pixel_variance, double fps) {
+  if (frames.empty()) return;
+  for (size_t k = 0; k < frames[0].size(); ++k) {
+    std::vector<std::optional<PointMeasurement>> z(frames.size());
+    for (size_t f = 0; f < frames.size(); ++f) {
+      const Eigen::LDLT<Eigen::Matrix3d> ldlt(information[f][k]);
+      if (!frames[f][k] || ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 0)) {
+        continue;
+      }
+      z[f] = PointMeasurement{*frames[f][k],
+                              pixel_variance[k] * ldlt.solve(Eigen::Matrix3d::Identity())};
+    }
+    const SmoothedTrack t = rts_smooth_ml(z, 1.0 / fps);
+    for (size_t f = 0; f < t.points.size(); ++f) frames[f][k] = t.points[f].position;
+  }
 }
 
 // Interior gaps filled linearly (Pose2Sim interpolates them too), the ends held; then the
@@ -224,7 +271,11 @@ TriangulationResult run_triangulation(const Dataset& ds, const TriangulateOption
     tbb::parallel_for(size_t{0}, n,
                       [&](size_t f) { project_onto_bones(positions[f], information[f], bones); });
   }
-  smooth(positions, o, ds.fps());
+  if (o.filter == TemporalFilter::kalman) {
+    smooth_kalman(positions, information, pixel_variances(poses, layout.size()), ds.fps());
+  } else {
+    smooth(positions, o, ds.fps());
+  }
   for (const int k : place_unseen_keypoints(positions, layout)) {
     result.unseen.emplace_back(layout.keypoints[k].name);
   }

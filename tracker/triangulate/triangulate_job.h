@@ -18,9 +18,11 @@
 
 namespace simcap::tracker {
 
-enum class TemporalFilter { none, butterworth };
-inline constexpr NameTable<TemporalFilter, 2> kTemporalFilters{
-    {{"none", TemporalFilter::none}, {"butterworth", TemporalFilter::butterworth}}};
+enum class TemporalFilter { none, butterworth, kalman };
+inline constexpr NameTable<TemporalFilter, 3> kTemporalFilters{
+    {{"none", TemporalFilter::none},
+     {"butterworth", TemporalFilter::butterworth},
+     {"kalman", TemporalFilter::kalman}}};
 
 struct TriangulateOptions {
   std::filesystem::path detections;        // COCO results JSON, OpenPose folder or CSV
