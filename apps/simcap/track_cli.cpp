@@ -229,8 +229,9 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
              " (default: from the keypoint count; 17 is read as coco17)")
       ->check(CLI::IsMember(choices_of(kKeypointLayouts)));
   add_choice(cmd, "--smooth", t.filter, kTemporalFilters,
-             "triangulate: none, or butterworth (zero-phase low-pass of every keypoint over "
-             "time, Pose2Sim's filter)");
+             "triangulate: none, butterworth (zero-phase low-pass of every keypoint over "
+             "time, Pose2Sim's filter) or kalman (constant-velocity Kalman/RTS smoother, "
+             "its noise from the triangulation and its process noise by maximum likelihood)");
   cmd->add_option("--cutoff", t.cutoff_hz, "triangulate --smooth butterworth: cut-off, Hz")
       ->check(CLI::Range(0.1, 1000.0))
       ->capture_default_str();
