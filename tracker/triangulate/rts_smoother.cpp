@@ -12,10 +12,9 @@ using Matrix6 = Eigen::Matrix<double, 6, 6>;
 // Velocity variance before any frame says anything about it: (10 m/s)².
 constexpr double kVelocityPrior = 100.0;
 
-}  // namespace
-
-SmoothedTrack rts_smooth(const std::vector<std::optional<PointMeasurement>>& z, double dt,
-                         double q) {
+// The filter, and with `backward` the smoother pass too (the likelihood needs only the filter).
+SmoothedTrack run(const std::vector<std::optional<PointMeasurement>>& z, double dt, double q,
+                  bool backward) {
   SmoothedTrack out;
   out.acceleration_psd = q;
   const size_t n = z.size();
@@ -62,6 +61,7 @@ SmoothedTrack rts_smooth(const std::vector<std::optional<PointMeasurement>>& z, 
     filtered[k] = x;
     filtered_cov[k] = p;
   }
+  if (!backward) return out;
   // Backward (Rauch–Tung–Striebel).
   std::vector<Vector6> smoothed(n);
   std::vector<Matrix6> smoothed_cov(n);
@@ -86,11 +86,18 @@ SmoothedTrack rts_smooth(const std::vector<std::optional<PointMeasurement>>& z, 
   return out;
 }
 
+}  // namespace
+
+SmoothedTrack rts_smooth(const std::vector<std::optional<PointMeasurement>>& z, double dt,
+                         double q) {
+  return run(z, dt, q, true);
+}
+
 SmoothedTrack rts_smooth_ml(const std::vector<std::optional<PointMeasurement>>& z, double dt) {
   const auto likelihood = [&](double log_q) {
-    return rts_smooth(z, dt, std::exp(log_q)).log_likelihood;
+    return run(z, dt, std::exp(log_q), false).log_likelihood;
   };
-  const double step = 0.5 * std::log(2.0);
+  const double step = std::log(2.0);
   const double lo = std::log(1e-3), hi = std::log(1e4);
   double best = lo, best_value = likelihood(lo);
   for (double t = lo + step; t <= hi + 1e-9; t += step) {
@@ -105,7 +112,7 @@ SmoothedTrack rts_smooth_ml(const std::vector<std::optional<PointMeasurement>>& 
   double a = best - step, b = best + step;
   double c = b - ratio * (b - a), d = a + ratio * (b - a);
   double fc = likelihood(c), fd = likelihood(d);
-  for (int i = 0; i < 20; ++i) {
+  for (int i = 0; i < 12; ++i) {
     if (fc > fd) {
       b = d;
       d = c;

@@ -34,7 +34,7 @@ SmoothedTrack rts_smooth(const std::vector<std::optional<PointMeasurement>>& mea
                          double dt, double acceleration_psd);
 
 // rts_smooth with q maximizing the measurements' likelihood over a log grid from 1e-3 to 1e4
-// m²/s³ (factor √2 apart), refined by golden-section search on log q around the best.
+// m²/s³ (factor 2 apart), refined by golden-section search on log q around the best.
 SmoothedTrack rts_smooth_ml(const std::vector<std::optional<PointMeasurement>>& measurements,
                             double dt);
 

@@ -94,7 +94,7 @@ void smooth_kalman(std::vector<Keypoints3d>& frames,
                    const std::vector<std::vector<Eigen::Matrix3d>>& information,
                    const std::vector<double>& pixel_variance, double fps) {
   if (frames.empty()) return;
-  for (size_t k = 0; k < frames[0].size(); ++k) {
+  tbb::parallel_for(size_t{0}, frames[0].size(), [&](size_t k) {
     std::vector<std::optional<PointMeasurement>> z(frames.size());
     for (size_t f = 0; f < frames.size(); ++f) {
       const Eigen::LDLT<Eigen::Matrix3d> ldlt(information[f][k]);
@@ -106,7 +106,7 @@ void smooth_kalman(std::vector<Keypoints3d>& frames,
     }
     const SmoothedTrack t = rts_smooth_ml(z, 1.0 / fps);
     for (size_t f = 0; f < t.points.size(); ++f) frames[f][k] = t.points[f].position;
-  }
+  });
 }
 
 // Interior gaps filled linearly (Pose2Sim interpolates them too), the ends held; then the
