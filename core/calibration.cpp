@@ -3,10 +3,13 @@
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
+#include <cctype>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/core/persistence.hpp>
 #include <sstream>
+#include <string_view>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -137,6 +140,19 @@ void check_yaml_syntax(const fs::path& path) {
   std::string text = read_text(path);
   // OpenCV's header "%YAML:1.0" is a directive yaml-cpp refuses; blanking it keeps line numbers.
   if (text.starts_with("%YAML:")) text.erase(0, text.find('\n'));
+  // A line that starts with "---" and goes on without a blank is a plain scalar to yaml-cpp but a
+  // document start to OpenCV, whose reader then loops forever on some files (a fuzzing finding,
+  // tests/fuzz/regressions/calibration_opencv/dashes_glued_to_text).
+  for (std::size_t start = 0, line = 1; start < text.size(); ++line) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    const std::string_view row = std::string_view(text).substr(start, end - start);
+    if (row.size() > 3 && row.starts_with("---") &&
+        !std::isspace(static_cast<unsigned char>(row[3]))) {
+      throw_input_error(path, static_cast<int>(line), "",
+                        "a line starting with '---' (a document start) needs a blank after it");
+    }
+    start = end + 1;
+  }
   std::istringstream in(text);
   try {
     YAML::Parser parser(in);
