@@ -3,13 +3,11 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
-#include <algorithm>
-#include <cstdint>
-#include <fstream>
 #include <vector>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/image_claims.h"
 #include "core/limits.h"
 
 namespace simcap {
@@ -26,45 +24,6 @@ OIIO::TypeDesc oiio_type(int depth) {
       return OIIO::TypeDesc::FLOAT;
     default:
       return OIIO::TypeDesc::UNKNOWN;
-  }
-}
-
-// OpenEXR 3.1 allocates what an attribute's size field claims before it reads the value (2 GiB
-// for a damaged 400-byte file, a fuzzing finding), so each header attribute's claim is checked
-// against the bytes the file has left first. A multi-part file holds one header per part and
-// ends the list with an empty one. Files that are not OpenEXR are left to the reader.
-void check_exr_header(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::error_code error;
-  const auto file_size = static_cast<std::int64_t>(fs::file_size(path, error));
-  auto read_le32 = [&] {
-    unsigned char b[4] = {};
-    in.read(reinterpret_cast<char*>(b), 4);
-    return static_cast<std::uint32_t>(b[0] | b[1] << 8 | b[2] << 16 | b[3] << 24);
-  };
-  const std::uint32_t magic = read_le32(), version = read_le32();
-  if (error || !in || magic != 20000630) return;
-  const bool multipart = (version & 0x1000) != 0;
-  auto damaged = [&](const std::string& what) {
-    throw Error(path.string() + ": damaged OpenEXR header: " + what);
-  };
-  for (bool in_header = false;;) {
-    std::string name, type;
-    if (!std::getline(in, name, '\0')) damaged("it ends before its last attribute");
-    if (name.empty()) {
-      if (!multipart || !in_header) return;
-      in_header = false;
-      continue;
-    }
-    in_header = true;
-    if (!std::getline(in, type, '\0')) damaged("attribute '" + name + "' has no type");
-    const auto size = static_cast<std::int32_t>(read_le32());
-    const std::int64_t left = file_size - static_cast<std::int64_t>(in.tellg());
-    if (!in || size < 0 || size > left) {
-      damaged("attribute '" + name + "' claims " + std::to_string(size) + " bytes, " +
-              std::to_string(std::max<std::int64_t>(left, 0)) + " are left in the file");
-    }
-    in.seekg(size, std::ios::cur);
   }
 }
 
@@ -126,13 +85,26 @@ void check_image_size(const fs::path& path, long width, long height, int channel
 
 cv::Mat read_image(const fs::path& path) {
   if (!fs::exists(path)) throw Error(path.string() + ": image not found");
-  if (path.extension() == ".exr") check_exr_header(path);
+  // Read once, checked, and decoded from memory. The checks come first because the decoders
+  // allocate what a damaged header claims before they find the damage.
+  const std::string bytes = read_text(path);
+  const std::string ext = path.extension().string();
+  if (ext == ".png" && is_png(bytes)) {
+    const PngClaims claims = png_claims(bytes);
+    if (claims.width > 0) check_image_size(path, claims.width, claims.height, claims.channels);
+    if (!claims.damage.empty()) throw Error(path.string() + ": damaged PNG: " + claims.damage);
+  }
+  if (const std::string damage = ext == ".exr" ? exr_header_damage(bytes) : ""; !damage.empty()) {
+    throw Error(path.string() + ": damaged OpenEXR header: " + damage);
+  }
   // Only the reader its extension names: ImageInput::open would, when that reader refuses the
   // file, try each of OpenImageIO's ~30 formats on it, which costs more than reading a good
   // image and reports the last format's complaint instead of the named one's.
+  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
   auto in = OIIO::ImageInput::create(path.string());
-  OIIO::ImageSpec opened;
   if (!in) throw Error(path.string() + ": cannot read image: " + OIIO::geterror());
+  if (in->supports("ioproxy")) in->set_ioproxy(&memory);
+  OIIO::ImageSpec opened;
   if (!in->open(path.string(), opened)) {
     throw Error(path.string() + ": cannot read image: " + in->geterror());
   }
