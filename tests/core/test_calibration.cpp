@@ -167,7 +167,8 @@ TEST(Calibration, MissingAndGarbledFilesAreErrors) {
   // A plain scalar to yaml-cpp, a document start to OpenCV, whose reader loops on this file.
   write_text_atomic(dir / "dashes.yaml", "%YAML:1.0\n---a: 0\n----x\n");
   const auto dashes = error_of([&] { read_opencv_calibration(dir / "dashes.yaml"); });
-  EXPECT_NE(dashes.find("dashes.yaml:2: a line starting with '---'"), std::string::npos) << dashes;
+  EXPECT_NE(dashes.find("dashes.yaml:2: '---' (a document start) needs a blank"), std::string::npos)
+      << dashes;
 }
 
 TEST(Calibration, EasyMocapMissingFieldNamesTheFile) {
