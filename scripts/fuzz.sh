@@ -45,7 +45,7 @@ for target in "$@"; do
   printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$(date -u +%FT%TZ)" "$target" "$seconds" "${execs:-0}" \
     "${cov:-?}" "${ft:-?}" "$(ls "$corpus" | wc -l)" >>"$stats"
   for f in "$findings"/*; do
-    [ -f "$f" ] && [ "${f%.txt}" = "$f" ] && [ ! -f "$f.txt" ] || continue
+    [ -f "$f" ] && [ "${f%.txt}" = "$f" ] && [ "${f%.log}" = "$f" ] && [ ! -f "$f.txt" ] || continue
     {
       echo "# $(grep -m1 -E 'ERROR|runtime error|terminate|Assert' "$log" || echo 'see the log')"
       echo "# reproduce (clang, sanitized):"
