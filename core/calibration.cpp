@@ -3,10 +3,14 @@
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
+#include <cctype>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/core/persistence.hpp>
+#include <set>
 #include <sstream>
+#include <string_view>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -17,7 +21,7 @@ namespace {
 
 constexpr double kRotationTolerance = 1e-6;
 // OpenCV's calibration files hold one YAML document; EasyMocap's too.
-constexpr int kMaxYamlDocuments = 4;
+constexpr int kMaxYamlDocuments = 1;
 
 cv::Mat to_mat(const Eigen::MatrixXd& m) {
   cv::Mat out;
@@ -112,21 +116,65 @@ class FieldReader {
   std::string camera_;
 };
 
-// yaml-cpp events, dropped: the syntax check below needs no document tree.
-struct IgnoreYamlEvents : YAML::EventHandler {
+// The lines on which yaml-cpp's events start (0-based); the syntax check needs no document tree.
+struct YamlEventLines : YAML::EventHandler {
+  std::set<int> lines;
   void OnDocumentStart(const YAML::Mark&) override {}
   void OnDocumentEnd() override {}
-  void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
-  void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
-                const std::string&) override {}
-  void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
-                       YAML::EmitterStyle::value) override {}
+  void OnNull(const YAML::Mark& m, YAML::anchor_t) override { lines.insert(m.line); }
+  void OnAlias(const YAML::Mark& m, YAML::anchor_t) override { lines.insert(m.line); }
+  void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t,
+                const std::string&) override {
+    lines.insert(m.line);
+  }
+  void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
+    lines.insert(m.line);
+  }
   void OnSequenceEnd() override {}
-  void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
-                  YAML::EmitterStyle::value) override {}
+  void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {
+    lines.insert(m.line);
+  }
   void OnMapEnd() override {}
 };
+
+// A line on which no value starts continues one from an earlier line (a multi-line plain scalar
+// to yaml-cpp), which OpenCV 4.6's reader reads as structure and may loop forever on (a fuzzing
+// finding, tests/fuzz/regressions/calibration_opencv/value_over_two_lines). Blank lines,
+// comments, document markers and lines that only close brackets start none by nature.
+void check_one_line_values(const fs::path& path, std::string_view text,
+                           const std::set<int>& lines) {
+  for (std::size_t start = 0, line = 0; start < text.size(); ++line) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    const std::string_view row = text.substr(start, end - start);
+    start = end + 1;
+    const std::size_t first = row.find_first_not_of(" \t\r]},");
+    if (first == std::string_view::npos || row[first] == '#' || row.starts_with("---") ||
+        row.starts_with("...") || lines.contains(static_cast<int>(line))) {
+      continue;
+    }
+    throw_input_error(path, static_cast<int>(line) + 1, "",
+                      "this line continues a value from an earlier line; calibration values "
+                      "(and keys) fit on one line");
+  }
+}
+
+// A line that starts with "---" and goes on without a blank is a plain scalar to yaml-cpp but a
+// document start to OpenCV, whose reader then loops forever on some files (a fuzzing finding,
+// tests/fuzz/regressions/calibration_opencv/dashes_glued_to_text).
+void check_document_starts(const fs::path& path, std::string_view text) {
+  for (std::size_t start = 0, line = 1; start < text.size(); ++line) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    const std::string_view row = text.substr(start, end - start);
+    start = end + 1;
+    if (row.size() > 3 && row.starts_with("---") &&
+        !std::isspace(static_cast<unsigned char>(row[3]))) {
+      throw_input_error(path, static_cast<int>(line), "",
+                        "'---' (a document start) needs a blank after it");
+    }
+  }
+}
 
 // OpenCV 4.6's YAML reader loops forever on some malformed files (a fuzzing finding, kept in
 // tests/fuzz/regressions/calibration_opencv/), so yaml-cpp checks the syntax first; its errors
@@ -137,17 +185,19 @@ void check_yaml_syntax(const fs::path& path) {
   std::string text = read_text(path);
   // OpenCV's header "%YAML:1.0" is a directive yaml-cpp refuses; blanking it keeps line numbers.
   if (text.starts_with("%YAML:")) text.erase(0, text.find('\n'));
+  check_document_starts(path, text);
   std::istringstream in(text);
   try {
     YAML::Parser parser(in);
-    IgnoreYamlEvents events;
+    YamlEventLines events;
     for (int documents = 0; parser.HandleNextDocument(events);) {
       if (++documents > kMaxYamlDocuments) {
         throw_input_error(path, 0, "",
-                          "not a calibration file: more than " + std::to_string(kMaxYamlDocuments) +
-                              " YAML documents");
+                          "not a calibration file: more than one YAML document (yaml-cpp starts "
+                          "another where a line is less indented than the first value)");
       }
     }
+    check_one_line_values(path, text, events.lines);
   } catch (const YAML::Exception& e) {
     throw_input_error(path, e.mark.line + 1, "", "not valid YAML: " + e.msg);
   }

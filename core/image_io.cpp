@@ -7,6 +7,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/image_claims.h"
 #include "core/limits.h"
 
 namespace simcap {
@@ -84,11 +85,32 @@ void check_image_size(const fs::path& path, long width, long height, int channel
 
 cv::Mat read_image(const fs::path& path) {
   if (!fs::exists(path)) throw Error(path.string() + ": image not found");
-  auto in = OIIO::ImageInput::open(path.string());
+  // Read once, checked, and decoded from memory. The checks come first because the decoders
+  // allocate what a damaged header claims before they find the damage.
+  const std::string bytes = read_text(path);
+  const std::string ext = path.extension().string();
+  if (ext == ".png" && is_png(bytes)) {
+    const PngClaims claims = png_claims(bytes);
+    if (claims.width > 0) check_image_size(path, claims.width, claims.height, claims.channels);
+    if (!claims.damage.empty()) throw Error(path.string() + ": damaged PNG: " + claims.damage);
+  }
+  if (const std::string damage = ext == ".exr" ? exr_header_damage(bytes) : ""; !damage.empty()) {
+    throw Error(path.string() + ": damaged OpenEXR header: " + damage);
+  }
+  // Only the reader its extension names: ImageInput::open would, when that reader refuses the
+  // file, try each of OpenImageIO's ~30 formats on it, which costs more than reading a good
+  // image and reports the last format's complaint instead of the named one's.
+  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+  auto in = OIIO::ImageInput::create(path.string());
   if (!in) throw Error(path.string() + ": cannot read image: " + OIIO::geterror());
+  if (in->supports("ioproxy")) in->set_ioproxy(&memory);
+  OIIO::ImageSpec opened;
+  if (!in->open(path.string(), opened)) {
+    throw Error(path.string() + ": cannot read image: " + in->geterror());
+  }
   const OIIO::ImageSpec& spec = in->spec();
   check_image_size(path, spec.width, spec.height, spec.nchannels);
-  // OpenImageIO tries every format it knows on a file, some of which hold volumes.
+  // Some of the formats OpenImageIO reads hold volumes.
   if (spec.depth != 1) throw Error(path.string() + ": a volume image; expected a 2D image");
   int depth = CV_8U;
   if (spec.format == OIIO::TypeDesc::UINT16) depth = CV_16U;

@@ -226,7 +226,7 @@ KeypointTruth read_keypoint_truth(const fs::path& dataset, KeypointLayoutId layo
   Json coco;
   try {
     coco = Json::parse(read_text(coco_file));
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {  // out_of_range too: a number beyond double's range
     throw_input_error(coco_file, 0, "", std::string("not valid JSON: ") + e.what());
   }
   KeypointTruth truth(layout, names, actors, frame_count(coco, coco_file));

@@ -164,6 +164,11 @@ TEST(Calibration, MissingAndGarbledFilesAreErrors) {
   write_text_atomic(dir / "comma.yaml", "%YAML:1.0\n---\n,\n");
   const auto comma = error_of([&] { read_opencv_calibration(dir / "comma.yaml"); });
   EXPECT_NE(comma.find("comma.yaml"), std::string::npos) << comma;
+  // A plain scalar to yaml-cpp, a document start to OpenCV, whose reader loops on this file.
+  write_text_atomic(dir / "dashes.yaml", "%YAML:1.0\n---a: 0\n----x\n");
+  const auto dashes = error_of([&] { read_opencv_calibration(dir / "dashes.yaml"); });
+  EXPECT_NE(dashes.find("dashes.yaml:2: '---' (a document start) needs a blank"), std::string::npos)
+      << dashes;
 }
 
 TEST(Calibration, EasyMocapMissingFieldNamesTheFile) {

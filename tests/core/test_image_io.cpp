@@ -2,9 +2,13 @@
 #include <gtest/gtest.h>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <string>
+#include <vector>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/image_claims.h"
 #include "core/image_io.h"
 #include "tests/support/huge_png.h"
 #include "tests/support/temp_dir.h"
@@ -74,6 +78,54 @@ TEST(ImageIO, RefusesAHeaderClaimingTooManyPixelsBeforeAllocating) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("huge.png: the image is 65536x32768 pixels, more than the "
                                          "67108864 (8192x8192) simcap allows an image"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// Damaged files are refused from what their structure claims, before a decoder allocates for it;
+// good files pass. cv::imencode writes the PNGs (an independent encoder).
+TEST(ImageIO, DamagedPngAndExrHeadersAreRefusedBeforeDecoding) {
+  TempDir dir;
+  std::vector<unsigned char> encoded;
+  cv::imencode(".png", cv::Mat(48, 64, CV_8UC3, cv::Scalar(1, 2, 3)), encoded);
+  const std::string png(encoded.begin(), encoded.end());
+  EXPECT_EQ(png_claims(png).damage, "");
+  EXPECT_EQ(png_claims(png).width, 64);
+  EXPECT_EQ(png_claims(png).channels, 3);
+  EXPECT_NE(png_claims(png.substr(0, png.size() - 12)).damage.find("without an IEND"),
+            std::string::npos);
+  std::string overlong = png;
+  overlong[33] = 0x7f;  // the length of the chunk after IHDR: 2 GB
+  EXPECT_NE(png_claims(overlong).damage.find("more than the file holds"), std::string::npos);
+  std::string wide = png;  // 64 -> 8192 pixels wide: far more than the image data could hold
+  wide[18] = 0x20;
+  wide[19] = 0x00;
+  EXPECT_NE(png_claims(wide).damage.find("cannot hold the 8192x48 pixels"), std::string::npos)
+      << png_claims(wide).damage;
+  write_text_atomic(dir / "wide.png", wide);
+  try {
+    read_image(dir / "wide.png");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("wide.png: damaged PNG"), std::string::npos) << e.what();
+  }
+
+  write_image(dir / "depth.exr", cv::Mat(6, 8, CV_32FC1, cv::Scalar(2.5f)));
+  std::string exr = read_text(dir / "depth.exr");
+  EXPECT_EQ(exr_header_damage(exr), "");
+  EXPECT_EQ(exr_header_damage(png), "");  // not OpenEXR: the reader says so
+  // The first attribute's size field (after the 8-byte preamble, its name and type) claims 2 GB.
+  const std::size_t name_end = exr.find('\0', 8), type_end = exr.find('\0', name_end + 1);
+  exr[type_end + 4] = 0x7f;
+  const std::string damage = exr_header_damage(exr);
+  EXPECT_NE(damage.find("claims"), std::string::npos) << damage;
+  write_text_atomic(dir / "bad.exr", exr);
+  try {
+    read_image(dir / "bad.exr");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.exr: damaged OpenEXR header: attribute"),
               std::string::npos)
         << e.what();
   }

@@ -4,12 +4,12 @@
 
 #include <algorithm>
 #include <csetjmp>
-#include <cstring>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "core/image_claims.h"
 #include "core/image_io.h"
 
 namespace simcap::tracker {
@@ -65,24 +65,17 @@ cv::Mat decode_png(const std::filesystem::path& path, int flags) {
   if (!in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size))) {
     return {};
   }
+  const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   // Not a PNG: cv::imread would try every decoder it has on it, and GDCM's DICOM reader aborts
   // the process on some bytes (a fuzzing finding).
-  if (bytes.size() < 8 || png_sig_cmp(bytes.data(), 0, 8) != 0) return {};
-  // The size the IHDR chunk (always first) claims, checked before either decoder sees the file:
-  // a file libpng refuses still goes to cv::imread, which would allocate up to 2^30 pixels.
-  const auto be32 = [&](std::size_t at) {
-    return static_cast<long>(bytes[at]) << 24 | bytes[at + 1] << 16 | bytes[at + 2] << 8 |
-           bytes[at + 3];
-  };
-  if (bytes.size() >= 24 && std::memcmp(bytes.data() + 12, "IHDR", 4) == 0) {
-    check_image_size(path, be32(16), be32(20), 1);
-  }
-  // A chunk longer than the rest of the file is damage, and cv::imread would allocate what its
-  // length claims (1.3 GB for a 206-byte file the fuzzer found) before finding out.
-  for (std::size_t at = 8; at + 8 <= bytes.size(); at += 12 + static_cast<std::size_t>(be32(at))) {
-    if (static_cast<std::size_t>(be32(at)) + 12 > bytes.size() - at) return {};
-    if (std::memcmp(bytes.data() + at + 4, "IEND", 4) == 0) break;
-  }
+  if (!is_png(text)) return {};
+  // The size IHDR claims is checked before either decoder sees the file: a file libpng refuses
+  // still goes to cv::imread, which would allocate up to 2^30 pixels. A damaged file (a chunk
+  // longer than the file, no IEND, too few bytes for its pixels) is refused too: cv::imread
+  // allocated what a chunk length claimed (1.3 GB for a 206-byte file the fuzzer found).
+  const PngClaims claims = png_claims(text);
+  if (claims.width > 0) check_image_size(path, claims.width, claims.height, 1);
+  if (!claims.damage.empty()) return {};
   if (flags != cv::IMREAD_UNCHANGED && flags != cv::IMREAD_COLOR) return fallback();
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
