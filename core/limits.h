@@ -16,9 +16,13 @@ inline constexpr const char* kMaxImagePixelsText = "8192x8192";
 // Channels of an image file (grey, grey + alpha, RGB, RGBA).
 inline constexpr int kMaxImageChannels = 4;
 
+// Joint rotations of a whole motion in memory (frames x joints, 32 bytes each: 1 GiB), e.g. 3.9
+// hours of an 81-joint humanoid at 30 frames/s. A few hundred bytes of X3D can ask for more.
+inline constexpr long kMaxPoseSamples = 1L << 25;
+
 // Frames at t = i / fps for i = 0, 1, ... within [0, duration_s] (the end kept despite rounding,
 // 994 frames at 120 fps -> 30 fps); throws Error "<what>: ..." naming kMaxFrames when they are
-// more.
-int frames_within(double duration_s, double fps, std::string_view what);
+// more, or kMaxPoseSamples when they hold more joint rotations at `joints` a frame.
+int frames_within(double duration_s, double fps, long joints, std::string_view what);
 
 }  // namespace simcap::limits

@@ -337,7 +337,8 @@ Motion generate_procedural(const ProceduralSpec& spec, const Skeleton& skeleton,
   }
   Motion motion;
   motion.fps = fps;
-  const int frames = limits::frames_within(spec.duration_s, fps, "procedural motion");
+  const int frames =
+      limits::frames_within(spec.duration_s, fps, skeleton.size(), "procedural motion");
   for (int i = 0; i < frames; ++i) motion.frames.push_back(pose_at(i / fps));
   return motion;
 }

@@ -17,7 +17,9 @@ Motion resample_motion(const Motion& motion, double fps) {
   Motion out;
   out.fps = fps;
   const int n_in = static_cast<int>(motion.frames.size());
-  const int n_out = limits::frames_within(motion.duration_s(), fps, "resample: the motion");
+  const int n_out = limits::frames_within(motion.duration_s(), fps,
+                                          static_cast<long>(motion.frames.front().rotations.size()),
+                                          "resample: the motion");
   out.frames.reserve(n_out);
   for (int i = 0; i < n_out; ++i) {
     const double u = std::min(i / fps * motion.fps, static_cast<double>(n_in - 1));

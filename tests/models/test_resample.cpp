@@ -72,5 +72,26 @@ TEST(Resample, BadInputIsAnError) {
   EXPECT_THROW(resample_motion(broken, 50.0), Error);
 }
 
+// Three frames an hour apart (a few bytes of X3D can say so) resampled to 30 frames/s: 216001
+// frames, within the frame limit; of 200 joints they are more rotations than simcap keeps.
+TEST(Resample, MoreJointRotationsThanTheLimitAreRefusedBeforeAllocating) {
+  Motion m;
+  m.fps = 1.0 / 3600;
+  Pose p;
+  p.rotations.assign(200, Eigen::Quaterniond::Identity());
+  m.frames.assign(3, p);
+  try {
+    resample_motion(m, 30.0);
+    FAIL() << "expected an Error";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(),
+                 "resample: the motion: 216001 frames of 200 joints are more joint rotations than "
+                 "simcap keeps in memory, 33554432");
+  }
+  m.frames[0].rotations.resize(100);
+  for (Pose& f : m.frames) f.rotations.resize(100);
+  EXPECT_EQ(resample_motion(m, 30.0).frames.size(), 216001u);
+}
+
 }  // namespace
 }  // namespace simcap
