@@ -92,7 +92,9 @@ AutoStart auto_start(const std::vector<Observation>& first, const TrackerOptions
     MoschiniTracker tracker(d, typical_surface(d), fine);
     tracker.start(upright);
     double total = 0;
-    for (int f = 0; f < frames; ++f) total += tracker.score(tracker.step(first[f]).pose, first[f]);
+    for (int f = 0; f < frames; ++f) {
+      total += tracker.silhouette_score(tracker.step(first[f]).pose, first[f]);
+    }
     return total;
   };
   const double shoulders = least([&](double v) { return cost(dims_of(1.0, v)); },
