@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <numbers>
 
 #include "core/error.h"
 #include "tracker/moschini/body_surface.h"
@@ -29,6 +31,34 @@ double least(F&& f, double lo, double hi, int evaluations) {
   return fa < fb ? a : b;
 }
 
+// Of `upright` turned about the vertical through its torso's centroid by every 360/turns
+// degrees, each fitted again as a recovery hypothesis and tracked through `first`, the one
+// whose silhouette cost is least, as fitted to the first frame.
+StickPose choose_heading(const StickPose& upright, const BodyDimensions& dims,
+                         const std::vector<Observation>& first, const TrackerOptions& options,
+                         const AutoStartOptions& search) {
+  StickPose best = upright;
+  double least_cost = std::numeric_limits<double>::infinity();
+  const int frames = std::min<int>(search.frames, static_cast<int>(first.size()));
+  for (int k = 0; k < search.turns; ++k) {
+    StickPose turned = upright;
+    turned.R0 =
+        Eigen::AngleAxisd(2 * std::numbers::pi * k / search.turns, Eigen::Vector3d::UnitY()) *
+        upright.R0;
+    MoschiniTracker tracker(dims, typical_surface(dims), options);
+    tracker.start(tracker.fit_hypothesis(first.front(), turned));
+    StickPose start;
+    double cost = 0;
+    for (int f = 0; f < frames; ++f) {
+      const StickPose pose = tracker.step(first[f]).pose;
+      if (f == 0) start = pose;
+      cost += tracker.silhouette_score(pose, first[f]);
+    }
+    if (cost < least_cost) least_cost = cost, best = start;
+  }
+  return best;
+}
+
 }  // namespace
 
 AutoStart auto_start(const std::vector<Observation>& first, const TrackerOptions& options,
@@ -53,7 +83,8 @@ AutoStart auto_start(const std::vector<Observation>& first, const TrackerOptions
   BodyDimensions dims = dimensions_from_height(height);
   MoschiniTracker finder(dims, typical_surface(dims), fine);
   finder.start_upright(first.front());
-  const StickPose upright = finder.step(first.front()).pose;
+  const StickPose upright =
+      choose_heading(finder.step(first.front()).pose, dims, first, fine, search);
   // The cost of tracking the first frames from that pose with other proportions: the joint
   // angles carry over, the sticks' lengths and the shoulders' height do not.
   const int frames = std::min<int>(search.frames, static_cast<int>(first.size()));
@@ -61,7 +92,9 @@ AutoStart auto_start(const std::vector<Observation>& first, const TrackerOptions
     MoschiniTracker tracker(d, typical_surface(d), fine);
     tracker.start(upright);
     double total = 0;
-    for (int f = 0; f < frames; ++f) total += tracker.score(tracker.step(first[f]).pose, first[f]);
+    for (int f = 0; f < frames; ++f) {
+      total += tracker.silhouette_score(tracker.step(first[f]).pose, first[f]);
+    }
     return total;
   };
   const double shoulders = least([&](double v) { return cost(dims_of(1.0, v)); },

@@ -64,6 +64,10 @@ double MoschiniTracker::score(const StickPose& pose, const Observation& obs) con
   return refiner_.cost(targets_of(obs), pose);
 }
 
+double MoschiniTracker::silhouette_score(const StickPose& pose, const Observation& obs) const {
+  return polisher_.cost(targets_of(obs), pose);
+}
+
 void MoschiniTracker::diagnose(const StickPose& pose, const Observation& obs,
                                TrackStep& out) const {
   out.icp = icp_.evaluate(obs.points, pose);
@@ -184,6 +188,13 @@ void MoschiniTracker::resolve_swapped_limbs(const IcpTargets& targets, StickPose
     refiner_.refine(targets, swapped);
     if (refiner_.cost(targets, swapped) < current) pose = swapped;
   }
+}
+
+StickPose MoschiniTracker::fit_hypothesis(const Observation& obs, StickPose pose) const {
+  const IcpTargets targets = targets_of(obs);
+  icp_.fit(targets, pose);
+  search_limbs(targets, pose);
+  return pose;
 }
 
 void MoschiniTracker::start_upright(const Observation& obs) {

@@ -94,6 +94,10 @@ class MoschiniTracker {
   // upright_hypotheses() after ICP.
   void start_upright(const Observation& obs);
 
+  // Fits `pose` to `obs` as recovery fits an upright hypothesis (the traversal, then each
+  // limb restarted from typical configurations) without moving the tracker.
+  StickPose fit_hypothesis(const Observation& obs, StickPose pose) const;
+
   TrackStep step(const Observation& obs);
   int reinitializations() const { return reinitializations_; }
 
@@ -102,6 +106,11 @@ class MoschiniTracker {
   // Lower is better: the joint refinement's cost (centerline, hull, silhouette rays and
   // outlines, priors).
   double score(const StickPose& pose, const Observation& obs) const;
+  // The final refinement's cost, without the centerline points: how well the capsules explain
+  // the silhouettes alone. The centerline's centroids lie between merged limbs and off a trunk
+  // whose hull carries phantom volume; scored with them, a person standing still with the
+  // legs together fits a quarter turn off better than at the true pose.
+  double silhouette_score(const StickPose& pose, const Observation& obs) const;
   // Fraction of points sampled every voxel along the sticks that lie off the hull.
   double outside_fraction(const StickPose& pose, const Occupancy& hull) const;
 

@@ -267,6 +267,29 @@ TEST(TrackJob, SubtractedSilhouettesAreScoredAgainstTheMasks) {
   EXPECT_LT(mpjpe_mm(dataset() / "gt" / "joints3d.csv", out / "t" / "joints3d.csv"), 60.0);
 }
 
+// The squat's person stands still at the centre of studio4's square room, facing a wall: the four
+// corner cameras see it much as one facing the next wall, and the first frame's centerline
+// fits a quarter turn off better than the true pose (the start was 93 degrees and 204 mm off).
+// The heading chosen by the silhouettes alone starts within a few centimetres.
+TEST(TrackJob, AutoInitializationFindsTheHeadingOnASymmetricRig) {
+  TempDir out;
+  std::string log;
+  ASSERT_EQ(
+      run_simcap("render " SIMCAP_SOURCE_DIR "/scenes/studio4.yaml -o " + (out / "d").string() +
+                     " --quiet --frames 4 --set "
+                     "'actors[0].motion={procedural: squat, duration: 4, count: 3}' --set "
+                     "'actors[0].offset=[0,0,0]'",
+                 &log),
+      0)
+      << log;
+  ASSERT_EQ(run_simcap("track " + (out / "d").string() + " -o " + (out / "t").string() +
+                           " --init auto --quiet",
+                       &log),
+            0)
+      << log;
+  EXPECT_LT(mpjpe_mm(out / "d" / "gt" / "joints3d.csv", out / "t" / "joints3d.csv"), 40);
+}
+
 TEST(TrackJob, AutoInitializationFindsTheBody) {
   TempDir out;
   std::string log;
