@@ -45,6 +45,47 @@ std::optional<LimbEnd> CameraTracker::far_end(Effector e, const CfofFrame& frame
   return end;
 }
 
+void CameraTracker::refind(Effector e, const CfofFrame& frame, const cv::Mat& silhouette,
+                           std::optional<cv::Point2d> root) {
+  const int i = part_index(e);
+  CfofTracker& t = parts_[i];
+  untracked_[i] = t.state() == CfofState::tracking ? 0 : untracked_[i] + 1;
+  const double reach = params_.refind_reach[i] * person_px_;
+  if (reach <= 0 || !root || untracked_[i] < params_.refind_patience) return;
+  // The window holds a hand at the reach's end whole, so that a longer blob (an arm beyond
+  // reach) is not cut to one that ends within it.
+  const double length = params_.anchor_length[i] * person_px_;
+  const int half = static_cast<int>(std::ceil(reach + length));
+  const cv::Rect image(0, 0, frame.hsv.cols, frame.hsv.rows);
+  const cv::Rect window =
+      cv::Rect(static_cast<int>(std::lround(root->x)) - half,
+               static_cast<int>(std::lround(root->y)) - half, 2 * half + 1, 2 * half + 1) &
+      image;
+  if (window.empty()) return;
+  cv::Mat part = t.colour_probability(frame, window) >= std::ceil(params_.anchor_color * 255);
+  // What another tracked part holds is that part's, not this one's (the head, the other hand).
+  for (size_t j = 0; j < parts_.size(); ++j) {
+    if (static_cast<int>(j) == i || parts_[j].state() != CfofState::tracking) continue;
+    cv::Rect2d r = parts_[j].roi();
+    r -= cv::Point2d(window.tl());
+    part(cv::Rect(cv::Point(static_cast<int>(std::floor(r.x)), static_cast<int>(std::floor(r.y))),
+                  cv::Point(static_cast<int>(std::ceil(r.br().x)),
+                            static_cast<int>(std::ceil(r.br().y)))) &
+         cv::Rect(0, 0, window.width, window.height))
+        .setTo(0);
+  }
+  const cv::Point2d start = *root - cv::Point2d(window.tl());
+  const auto end = limb_end(part, silhouette(window), start, length, start,
+                            params_.anchor_root_tolerance * person_px_);
+  if (!end) return;
+  const cv::Point2d centre = end->centre + cv::Point2d(window.tl());
+  if (std::hypot(centre.x - root->x, centre.y - root->y) > reach) return;
+  if (!t.restart(frame, centre)) return;
+  untracked_[i] = 0;
+  surface_[i] = end->pixels;
+  for (cv::Point& p : surface_[i]) p += window.tl();
+}
+
 CfofFrame CameraTracker::frame(const cv::Mat& bgr, const cv::Mat& silhouette) const {
   return CfofFrame::from_bgr(bgr, params_.colour_in_silhouette ? silhouette : cv::Mat(), cfof_);
 }
@@ -57,6 +98,7 @@ void CameraTracker::initialize(const cv::Mat& bgr, const cv::Mat& silhouette,
   previous_ = frame(bgr, silhouette);
   const auto pelvis = pelvis_.track(silhouette);
   pelvis_seen_ = pelvis.has_value();
+  untracked_ = {};
   if (pelvis) pelvis_position_ = *pelvis;
   int started = 0;
   for (Effector e : kEffectors) {
@@ -118,6 +160,11 @@ void CameraTracker::track(const cv::Mat& bgr, const cv::Mat& silhouette,
                    params_.anchor_gate * params_.anchor_length[i] * person_px_) {
       parts_[i].shift(shift);
       surface_[i] = end->pixels;
+    }
+  }
+  if (pelvis_seen_) {
+    for (size_t i = 0; i < parts_.size(); ++i) {
+      refind(static_cast<Effector>(i), current, silhouette, root[i]);
     }
   }
   previous_ = std::move(current);

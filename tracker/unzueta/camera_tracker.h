@@ -47,6 +47,16 @@ struct CameraTrackerParams {
   // Parts that are not tracked (hidden, or lost) move with the pelvis' image motion
   // (CfofTracker::track's `carry`); off: they coast on their own velocity alone.
   bool carry_with_pelvis = true;
+  // Re-finding a lost part (simcap's addition): a part that has not been tracked for
+  // `refind_patience` frames in a row (hidden behind a nearer part, which stops its optical
+  // flow for as long as it stays there, or coasted off the body, where no colour restarts it)
+  // is searched for from its limb's root: the far end (limb_end.h) of the part's coloured blob
+  // nearest the root within `refind_reach` (a fraction of the person's height) of it, other
+  // tracked parts' ROIs masked out, restarts CFOF there (CfofTracker::restart). The reach is
+  // the limb's length from the body's proportions (shoulder to fingertip 0.44 of the height:
+  // upper arm 0.186, forearm 0.146, hand 0.108, Winter's table); 0: never re-found.
+  int refind_patience = 10;
+  std::array<double, kEffectorCount - 1> refind_reach = {0, 0.44, 0.44, 0, 0};
 };
 
 class CameraTracker {
@@ -80,10 +90,14 @@ class CameraTracker {
   // The far end of the part's coloured blob in its ROI (see CameraTrackerParams::anchor).
   std::optional<LimbEnd> far_end(Effector e, const CfofFrame& frame, const cv::Mat& silhouette,
                                  std::optional<cv::Point2d> root) const;
+  // Restarts a part lost for `refind_patience` frames where its limb ends (see refind_reach).
+  void refind(Effector e, const CfofFrame& frame, const cv::Mat& silhouette,
+              std::optional<cv::Point2d> root);
   CameraTrackerParams params_;
   CfofParams cfof_;
   std::array<CfofTracker, kEffectorCount - 1> parts_;
   std::array<std::vector<cv::Point>, kEffectorCount - 1> surface_;
+  std::array<int, kEffectorCount - 1> untracked_{};  // frames in a row not tracked
   PelvisTracker pelvis_;
   cv::Point2d pelvis_position_;
   bool pelvis_seen_ = false;

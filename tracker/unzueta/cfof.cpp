@@ -97,12 +97,30 @@ void CfofTracker::initialize(const CfofFrame& frame, cv::Rect2d roi) {
   colour_.learn(frame.hsv, roi_at(centre_), frame.mask);
   initial_coloured_ = coloured_pixels(frame, roi_at(centre_));
   if (initial_coloured_ == 0) throw Error("CFOF: no pixel of the part's colour in its region");
+  start(frame);
+}
+
+bool CfofTracker::restart(const CfofFrame& frame, cv::Point2d centre) {
+  if (initial_coloured_ == 0 ||
+      coloured_pixels(frame, roi_at(centre)) < params_.restart_color_fraction * initial_coloured_) {
+    return false;
+  }
+  centre_ = centre;
+  start(frame);
+  return state_ == CfofState::tracking;
+}
+
+void CfofTracker::start(const CfofFrame& frame) {
   features_.clear();
   search(frame);
   cmdf(frame);
+  coast_velocity_ = {};
+  if (features_.empty()) {
+    state_ = CfofState::lost;
+    return;
+  }
   centre_on_selection();
   roi_filter_ = PointKalman(centre_, params_.kalman);
-  coast_velocity_ = {};
   state_ = CfofState::tracking;
 }
 

@@ -65,6 +65,10 @@ class CfofTracker {
   // their filters and centres the ROI on the CMDF selection. Throws Error when the ROI holds no
   // pixel of the part.
   void initialize(const CfofFrame& frame, cv::Rect2d roi);
+  // Starts the part again at `centre` in `frame` with the colours it learnt at initialization
+  // (e.g. where its limb is found after it was lost): as Alg. 2's restart, only when that ROI
+  // holds enough of the part's colour (restart_color_fraction). Returns whether it tracks.
+  bool restart(const CfofFrame& frame, cv::Point2d centre);
   // Alg. 2 on the next frame. When `hidden` (another tracked part lies in front, §3.3.1) the
   // optical flow stops: the features are dropped and the ROI coasts on its Kalman filter.
   // `carry` is how far the body the part belongs to moved since the previous frame (e.g. the
@@ -98,6 +102,8 @@ class CfofTracker {
   void flow(const CfofFrame& previous, const CfofFrame& current);
   void cmdf(const CfofFrame& frame);
   void centre_on_selection();
+  // Searches, selects and centres the flock at `centre_` and starts its filters.
+  void start(const CfofFrame& frame);
   void coast(CfofState state, cv::Point2d carry);
   cv::Rect roi_at(cv::Point2d centre) const;
   Feature make_feature(cv::Point2f p) const;
