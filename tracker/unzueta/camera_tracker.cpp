@@ -63,27 +63,16 @@ void CameraTracker::refind(Effector e, const CfofFrame& frame, const cv::Mat& si
       image;
   if (window.empty()) return;
   cv::Mat part = t.colour_probability(frame, window) >= std::ceil(params_.anchor_color * 255);
-  // A blob another tracked part lies on is that part's (the head, the other hand with its
-  // forearm), not this one's.
-  cv::Mat blobs;
-  std::vector<bool> claimed(cv::connectedComponents(part, blobs, 8, CV_32S));
-  const cv::Rect inside(0, 0, window.width, window.height);
+  // What another tracked part holds is that part's, not this one's (the head, the other hand).
   for (size_t j = 0; j < parts_.size(); ++j) {
     if (static_cast<int>(j) == i || parts_[j].state() != CfofState::tracking) continue;
-    const cv::Point2d c = parts_[j].centre() - cv::Point2d(window.tl());
-    const cv::Size2d size = parts_[j].roi().size() * (0.5 * params_.part_box);
-    const cv::Rect box = cv::Rect(cv::Point(static_cast<int>(std::floor(c.x - size.width)),
-                                            static_cast<int>(std::floor(c.y - size.height))),
-                                  cv::Point(static_cast<int>(std::ceil(c.x + size.width)),
-                                            static_cast<int>(std::ceil(c.y + size.height)))) &
-                         inside;
-    if (box.empty()) continue;
-    for (int y = box.y; y < box.br().y; ++y) {
-      for (int x = box.x; x < box.br().x; ++x) claimed[blobs.at<int>(y, x)] = true;
-    }
-  }
-  for (size_t b = 1; b < claimed.size(); ++b) {
-    if (claimed[b]) part.setTo(0, blobs == static_cast<int>(b));
+    cv::Rect2d r = parts_[j].roi();
+    r -= cv::Point2d(window.tl());
+    part(cv::Rect(cv::Point(static_cast<int>(std::floor(r.x)), static_cast<int>(std::floor(r.y))),
+                  cv::Point(static_cast<int>(std::ceil(r.br().x)),
+                            static_cast<int>(std::ceil(r.br().y)))) &
+         cv::Rect(0, 0, window.width, window.height))
+        .setTo(0);
   }
   const cv::Point2d start = *root - cv::Point2d(window.tl());
   const auto end = limb_end(part, silhouette(window), start, length, start,
