@@ -154,6 +154,18 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
                   "surface (0: the nearest, 0.5: the median)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  cmd->add_option_function<double>(
+         "--refind-reach",
+         [&o](double reach) {
+           for (tracker::Effector e :
+                {tracker::Effector::left_hand, tracker::Effector::right_hand}) {
+             o.sik.tracking.refind_reach[tracker::index_of(e)] = reach;
+           }
+         },
+         "sik --effectors depth|mono|multiview: re-find a hand lost for 30 frames at the far end "
+         "of its skin blob within this reach of its shoulder, a fraction of the person's height "
+         "(0.44: shoulder to fingertip; default 0: off)")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--sik-noise", o.sik.noise_sigma_m,
                   "sik: standard deviation of the noise added to the end-effectors, metres")
       ->check(CLI::Range(0.0, 1.0))

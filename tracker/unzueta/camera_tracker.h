@@ -54,9 +54,11 @@ struct CameraTrackerParams {
   // nearest the root within `refind_reach` (a fraction of the person's height) of it, other
   // tracked parts' ROIs masked out, restarts CFOF there (CfofTracker::restart). The reach is
   // the limb's length from the body's proportions (shoulder to fingertip 0.44 of the height:
-  // upper arm 0.186, forearm 0.146, hand 0.108, Winter's table); 0: never re-found.
-  int refind_patience = 10;
-  std::array<double, kEffectorCount - 1> refind_reach = {0, 0.44, 0.44, 0, 0};
+  // upper arm 0.186, forearm 0.146, hand 0.108, Winter's table: `track --refind-reach 0.44`);
+  // 0: never re-found. Off by default: it finds gest3's lost hand (MPJPE 111 -> 48 mm) but
+  // costs the walk (studio4 230 -> 257 mm; UNZUETA.md).
+  int refind_patience = 30;
+  std::array<double, kEffectorCount - 1> refind_reach = {0, 0, 0, 0, 0};
 };
 
 class CameraTracker {

@@ -78,9 +78,17 @@ double distance(cv::Point2d a, cv::Point2d b) {
   return std::hypot(a.x - b.x, a.y - b.y);
 }
 
+// Shoulder to fingertip in the body's proportions (CameraTrackerParams::refind_reach).
+CameraTrackerParams refinding() {
+  CameraTrackerParams params;
+  params.refind_reach[index_of(Effector::left_hand)] = 0.44;
+  params.refind_reach[index_of(Effector::right_hand)] = 0.44;
+  return params;
+}
+
 TEST(CameraTracker, LostHandIsReFoundWhereItsArmEndsAfterThePatience) {
   const cv::Point2d hand(40, 97);
-  const CameraTrackerParams params;
+  const CameraTrackerParams params = refinding();
   const int frames = 4 + params.refind_patience + 5;
   const auto track = track_hand(params, frames);
   // Hanging, the hand is followed.
@@ -102,8 +110,7 @@ TEST(CameraTracker, LostHandIsReFoundWhereItsArmEndsAfterThePatience) {
 }
 
 TEST(CameraTracker, WithoutReFindingTheLostHandStaysLost) {
-  CameraTrackerParams params;
-  params.refind_reach.fill(0);
+  const CameraTrackerParams params;
   const auto track = track_hand(params, 4 + params.refind_patience + 5);
   EXPECT_NE(track.back().first, CfofState::tracking);
   EXPECT_GT(distance(track.back().second, {40, 97}), 50.0);
@@ -112,7 +119,7 @@ TEST(CameraTracker, WithoutReFindingTheLostHandStaysLost) {
 // The hand's reach bounds the search: a shorter arm (a reach that ends before the hand) finds
 // nothing to restart on.
 TEST(CameraTracker, HandBeyondTheArmsReachIsNotReFound) {
-  CameraTrackerParams params;
+  CameraTrackerParams params = refinding();
   params.refind_reach[index_of(Effector::right_hand)] = 60 / kPersonPx;
   const auto track = track_hand(params, 4 + params.refind_patience + 5);
   EXPECT_NE(track.back().first, CfofState::tracking);
