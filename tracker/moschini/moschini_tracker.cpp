@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <span>
 
 #include "core/error.h"
@@ -167,6 +168,7 @@ void MoschiniTracker::resolve_swapped_limbs(const IcpTargets& targets, StickPose
   }};
   const double margin = 0.03;
   const auto& ranges = model_.ranges();
+  std::optional<double> current;  // cost of `pose`, once asked for (it is not cheap)
   for (const Pair& pair : pairs) {
     const auto r = model_.reference_points(model_.geometry(pose));
     // The right-side reference point always follows its left one in ReferencePoint.
@@ -181,12 +183,13 @@ void MoschiniTracker::resolve_swapped_limbs(const IcpTargets& targets, StickPose
       swapped.theta[left] = limit_angle(swapped.theta[left], ranges[left]);
       swapped.theta[right] = limit_angle(swapped.theta[right], ranges[right]);
     }
-    const double current = refiner_.cost(targets, pose);
+    if (!current) current = refiner_.cost(targets, pose);
     // An uncrossed pair is only worth a refinement when the plain exchange already fits nearly
     // as well: a right fit's exchange costs several times more, a swapped one's less.
-    if (!crossed && refiner_.cost(targets, swapped) > kSwapWorthRefining * current) continue;
+    if (!crossed && refiner_.cost(targets, swapped) > kSwapWorthRefining * *current) continue;
     refiner_.refine(targets, swapped);
-    if (refiner_.cost(targets, swapped) < current) pose = swapped;
+    const double swapped_cost = refiner_.cost(targets, swapped);
+    if (swapped_cost < *current) pose = swapped, current = swapped_cost;
   }
 }
 

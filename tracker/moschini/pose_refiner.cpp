@@ -24,8 +24,10 @@ std::optional<Eigen::Vector3d> nearest_occupied(const Occupancy& hull, const Eig
     Eigen::Vector3d found;
     for (int dy = -r; dy <= r; ++dy) {
       for (int dz = -r; dz <= r; ++dz) {
-        for (int dx = -r; dx <= r; ++dx) {
-          if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) != r) continue;
+        // Inside the shell's y and z faces only its two x faces lie on it: stepping straight
+        // from one to the other visits the shell in the cube's order without testing the rest.
+        const int dx_step = std::abs(dy) == r || std::abs(dz) == r ? 1 : 2 * r;
+        for (int dx = -r; dx <= r; dx += dx_step) {
           const Eigen::Vector3i v = c + Eigen::Vector3i(dx, dy, dz);
           if (!hull.occupied(v)) continue;
           const Eigen::Vector3d p = hull.grid.center(v);

@@ -20,12 +20,6 @@ Eigen::Vector3i VoxelGrid::index(const Eigen::Vector3d& world) const {
           static_cast<int>(std::floor(f.z() + 0.5))};
 }
 
-bool Occupancy::occupied(const Eigen::Vector3i& v) const {
-  const Eigen::Vector3i r = v - lo;
-  if ((r.array() < 0).any() || (r.array() >= size.array()).any()) return false;
-  return cells[(static_cast<size_t>(r.y()) * size.z() + r.z()) * size.x() + r.x()] != 0;
-}
-
 bool Occupancy::occupied_near(const Eigen::Vector3d& world, int radius) const {
   const Eigen::Vector3i c = grid.index(world);
   for (int dy = -radius; dy <= radius; ++dy) {

@@ -40,7 +40,12 @@ struct Occupancy {
   std::vector<std::uint8_t> cells;  // 1 = occupied; (y * size.z + z) * size.x + x, box-relative
   int count = 0;
 
-  bool occupied(const Eigen::Vector3i& v) const;  // v in grid indices
+  // v in grid indices. (Inline: the fitting asks it for every voxel it searches.)
+  bool occupied(const Eigen::Vector3i& v) const {
+    const Eigen::Vector3i r = v - lo;
+    if ((r.array() < 0).any() || (r.array() >= size.array()).any()) return false;
+    return cells[(static_cast<size_t>(r.y()) * size.z() + r.z()) * size.x() + r.x()] != 0;
+  }
   // True when a voxel within `radius` voxels (Chebyshev) of the one containing `world` is set.
   bool occupied_near(const Eigen::Vector3d& world, int radius) const;
 };
