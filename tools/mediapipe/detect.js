@@ -364,13 +364,16 @@ async function main() {
   try {
     const {images, fps} = listImages(options);
     log(`detect_mediapipe: ${images.length} images of ${options.dataset} (model ${options.model})\n`);
+    // As simcap's own progress: one line redrawn each second on a terminal, a line every 5 s in
+    // a log, where carriage returns would run the lines together.
+    const tty = Boolean(process.stderr.isTTY);
     let lastPrint = 0;
     const progress = (done, total, found, image) => {
       const now = Date.now();
-      if (done === total || now - lastPrint > 1000) {
+      if (done === total || now - lastPrint > (tty ? 1000 : 5000)) {
         lastPrint = now;
-        lineOpen = done !== total;
-        log(`\rdetect_mediapipe: ${done}/${total} images, person in ${found} (${image.camera} frame ${image.frame})${lineOpen ? '' : '\n'}`);
+        lineOpen = tty && done !== total;
+        log(`${tty ? '\r' : ''}detect_mediapipe: ${done}/${total} images, person in ${found} (${image.camera} frame ${image.frame})${lineOpen ? '' : '\n'}`);
       }
     };
     const {results, initSeconds, detectSeconds} = await detect(options, images, fps, progress);
