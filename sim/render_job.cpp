@@ -142,13 +142,27 @@ void remove_dataset(const fs::path& dir) {
   }
 }
 
+// What a render killed before it wrote scene.yaml leaves: folders, temporaries and at most a
+// meta.json saying "complete": false. --resume starts such a folder afresh.
+bool only_a_started_render(const fs::path& dir) {
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+    if (entry.is_directory()) continue;
+    const std::string name = entry.path().filename().string();
+    if (name.find(".tmp") != std::string::npos) continue;
+    if (entry.path() != dir / "meta.json" || !holds_dataset(dir)) return false;
+    if (Json::parse(read_text(entry.path())).value("complete", true)) return false;
+  }
+  return true;
+}
+
 // Checks what is in `out_dir` against the options before anything is written.
 void prepare_output(const fs::path& out_dir, const Scene& scene, const RenderOptions& options) {
   std::error_code ec;
   if (fs::exists(out_dir, ec) && !fs::is_directory(out_dir, ec)) {
     throw Error(out_dir.string() + ": output exists and is not a folder");
   }
-  const bool empty = !fs::exists(out_dir, ec) || fs::is_empty(out_dir, ec);
+  const bool empty = !fs::exists(out_dir, ec) || fs::is_empty(out_dir, ec) ||
+                     (options.resume && only_a_started_render(out_dir));
   if (!empty && options.resume) {
     if (!holds_dataset(out_dir) || !fs::exists(out_dir / "scene.yaml")) {
       throw Error(out_dir.string() + ": --resume: the folder holds no simcap dataset");

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "core/atomic_file.h"
 #include "tests/support/file_tree.h"
 #include "tests/support/temp_dir.h"
 
@@ -89,6 +90,42 @@ TEST(RenderCrashSafety, KilledAtRandomMomentsThenResumedGivesTheSameBytes) {
   }
   // Kill moments after a run ended test nothing; how many fall inside depends on the load.
   EXPECT_GT(killed, 0);
+}
+
+// Killed before scene.yaml: an empty camera folder, a temporary and meta.json saying "complete":
+// false. --resume renders it afresh; a folder with a file of someone else's stays refused.
+TEST(RenderCrashSafety, ResumeStartsAfreshWhatAKillBeforeTheSceneFileLeft) {
+  TempDir dir;
+  ASSERT_EQ(run_simcap(shell_words(render_args(dir / "ref"))), 0);
+  const fs::path out = dir / "run";
+  fs::create_directories(out / "cam00");
+  nlohmann::json meta = nlohmann::json::parse(read_tree(dir / "ref").at("meta.json"));
+  meta["complete"] = false;
+  write_text_atomic(out / "meta.json", meta.dump(2));
+  write_text_atomic(out / ".scene.tmp123_0.yaml", "scene:");
+  std::vector<std::string> resume = render_args(out);
+  resume.push_back("--resume");
+  ASSERT_EQ(run_simcap(shell_words(resume)), 0);
+  const auto ref = read_tree(dir / "ref");
+  const auto resumed = read_tree(out);
+  ASSERT_EQ(resumed.size(), ref.size());
+  for (const auto& [name, content] : resumed) {
+    ASSERT_TRUE(ref.count(name)) << name;
+    if (name != "meta.json") {
+      EXPECT_TRUE(content == ref.at(name)) << name;
+    }
+  }
+
+  const fs::path other = dir / "other";
+  fs::create_directories(other);
+  write_text_atomic(other / "meta.json", meta.dump(2));
+  write_text_atomic(other / "notes.txt", "mine");
+  std::vector<std::string> refused = render_args(other);
+  refused.push_back("--resume");
+  std::string said;
+  EXPECT_EQ(run_simcap(shell_words(refused), &said), 1);
+  EXPECT_NE(said.find("--resume: the folder holds no simcap dataset"), std::string::npos) << said;
+  EXPECT_TRUE(fs::exists(other / "notes.txt"));
 }
 
 TEST(RenderCrashSafety, AFullDiskEndsInAClearErrorWithoutHalfFiles) {
