@@ -6,6 +6,9 @@
 
 namespace simcap {
 
+// Whether `path` is named as such a temporary file.
+bool is_temporary_file_name(const std::filesystem::path& path);
+
 // Removes them under `folder`, recursively; a missing folder is fine.
 void remove_stale_temporaries(const std::filesystem::path& folder);
 

@@ -146,13 +146,11 @@ void remove_dataset(const fs::path& dir) {
 // meta.json saying "complete": false. --resume starts such a folder afresh.
 bool only_a_started_render(const fs::path& dir) {
   for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-    if (entry.is_directory()) continue;
-    const std::string name = entry.path().filename().string();
-    if (name.find(".tmp") != std::string::npos) continue;
+    if (entry.is_directory() || is_temporary_file_name(entry.path())) continue;
     if (entry.path() != dir / "meta.json" || !holds_dataset(dir)) return false;
-    if (Json::parse(read_text(entry.path())).value("complete", true)) return false;
   }
-  return true;
+  return !fs::exists(dir / "meta.json") ||
+         !Json::parse(read_text(dir / "meta.json")).value("complete", true);
 }
 
 // Checks what is in `out_dir` against the options before anything is written.
