@@ -106,6 +106,7 @@ Evaluation evaluate(const EvaluationInput& in, const EvaluationOptions& options)
     const Eigen::VectorXd d = kMm * joint_distances(in.truth[f], in.estimate[f]);
     const Eigen::VectorXd pa =
         kMm * joint_distances(in.truth[f], procrustes_aligned(in.truth[f], in.estimate[f]));
+    RaySplit frame_ray;
     for (size_t j = 0; j < joints; ++j) {
       all.push_back(d[j]);
       all_pa.push_back(pa[j]);
@@ -119,6 +120,8 @@ Evaluation evaluate(const EvaluationInput& in, const EvaluationOptions& options)
         joint_across[j].push_back(kMm * (e - along * ray).norm());
         all_along.push_back(joint_along[j].back());
         all_across.push_back(joint_across[j].back());
+        frame_ray.along_mm += joint_along[j].back() / joints;
+        frame_ray.across_mm += joint_across[j].back() / joints;
       }
       if (!in.views.empty()) {
         const JointSight& v = in.views[f][j];
@@ -127,7 +130,8 @@ Evaluation evaluate(const EvaluationInput& in, const EvaluationOptions& options)
       }
     }
     for (int j : wrist_elbow) wrist_elbow_errors.push_back(d[j]);
-    ev.per_frame.push_back({in.frames[f], d.mean(), pa.mean()});
+    ev.per_frame.push_back({in.frames[f], d.mean(), pa.mean(), {}});
+    if (in.camera_centre) ev.per_frame.back().ray = frame_ray;
     per_frame_mpjpe.push_back(d.mean());
   }
   ev.mpjpe_mm = mean_value(all);

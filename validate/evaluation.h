@@ -57,6 +57,7 @@ struct JointScore {
 struct FrameScore {
   int frame = 0;
   double mpjpe_mm = 0, pa_mpjpe_mm = 0;
+  std::optional<RaySplit> ray;  // the frame's joints, with EvaluationInput::camera_centre
 };
 
 struct PckScore {

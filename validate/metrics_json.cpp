@@ -73,8 +73,10 @@ Json metrics_to_json(const Evaluation& ev, const std::string& dataset, const std
   }
   j["per_frame"] = Json::array();
   for (const auto& s : ev.per_frame) {
-    j["per_frame"].push_back(
-        {{"frame", s.frame}, {"mpjpe_mm", mm(s.mpjpe_mm)}, {"pa_mpjpe_mm", mm(s.pa_mpjpe_mm)}});
+    j["per_frame"].push_back({{"frame", s.frame},
+                              {"mpjpe_mm", mm(s.mpjpe_mm)},
+                              {"pa_mpjpe_mm", mm(s.pa_mpjpe_mm)},
+                              {"camera_ray", ray(s.ray)}});
   }
   if (ev.angles.empty()) {
     j["angles"] = nullptr;

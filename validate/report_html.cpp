@@ -82,6 +82,35 @@ std::string per_joint_section(const Evaluation& ev) {
   return s + "</table>\n";
 }
 
+// One camera: each error split into its component along the camera's ray through the true
+// joint (depth, which one view cannot see) and across it (the image plane).
+std::string camera_ray_section(const Evaluation& ev) {
+  std::string s =
+      "<h2>Depth ambiguity</h2>\n<p>One camera: each joint's error split into its component along "
+      "the camera's ray through the true joint (depth, which a single view cannot see) and the "
+      "component across it (the image plane). Mean over all joints and frames: along " +
+      fmt("%.1f", ev.ray->along_mm) + " mm, across " + fmt("%.1f", ev.ray->across_mm) +
+      " mm.</p>\n";
+  LinePlot over_time;
+  over_time.title = "Error along and across the camera ray per frame";
+  over_time.x_label = "frame";
+  over_time.y_label = "mm";
+  PlotSeries along{"along the ray (depth)", {}, {}}, across{"across the ray (image)", {}, {}};
+  for (const auto& f : ev.per_frame) {
+    along.x.push_back(f.frame);
+    along.y.push_back(f.ray->along_mm);
+    across.x.push_back(f.frame);
+    across.y.push_back(f.ray->across_mm);
+  }
+  over_time.series = {along, across};
+  s += line_plot_svg(over_time);
+  s += "<table>\n" + row({"joint", "along the ray mm", "across the ray mm"}, "th");
+  for (const auto& j : ev.per_joint) {
+    s += row({j.joint, fmt("%.1f", j.ray->along_mm), fmt("%.1f", j.ray->across_mm)});
+  }
+  return s + "</table>\n";
+}
+
 std::string visibility_chart(const std::string& title, const std::vector<VisibilityGroup>& groups) {
   BarChart chart;
   chart.title = title;
@@ -200,6 +229,7 @@ std::string report_html(const Evaluation& ev, const ReportContent& c) {
          visibility_chart("MPJPE by cameras seeing the joint", ev.by_visible_cameras) +
          visibility_chart("MPJPE by occlusion", ev.by_occlusion);
   }
+  if (ev.ray) s += camera_ray_section(ev);
   if (!ev.angles.empty()) s += angles_section(ev);
   s += failures_section(ev) + media_section(c) + "</body>\n</html>\n";
   return s;

@@ -142,6 +142,12 @@ std::string csv_number(double v, int decimals) {
   return std::isnan(v) ? "" : fixed(v, decimals);
 }
 
+// One-camera sweeps split each error along and across the camera's rays (depth ambiguity).
+bool has_ray_split(const std::vector<SweepOutcome>& outcomes) {
+  return std::any_of(outcomes.begin(), outcomes.end(),
+                     [](const SweepOutcome& o) { return o.evaluation && o.evaluation->ray; });
+}
+
 std::string text_number(double v, int decimals, double scale = 1, const char* unit = "") {
   return std::isnan(v) ? "-" : fixed(v * scale, decimals) + unit;
 }
@@ -164,6 +170,11 @@ void write_csv(const SweepSpec& spec, const std::vector<SweepPoint>& points,
       }
     }
     columns.push_back("report2d");
+  }
+  const bool ray = has_ray_split(outcomes);
+  if (ray) {
+    columns.push_back("along_ray_mm");
+    columns.push_back("across_ray_mm");
   }
   CsvWriter csv(out / "table.csv", columns);
   CsvWriter times(out / "timings.csv",
@@ -200,6 +211,12 @@ void write_csv(const SweepSpec& spec, const std::vector<SweepPoint>& points,
         csv.out() << std::string(2 + 4 * k2dClasses.size(), ',');
       }
     }
+    if (ray && o.evaluation && o.evaluation->ray) {
+      csv.out() << ',' << fixed(o.evaluation->ray->along_mm, 2) << ','
+                << fixed(o.evaluation->ray->across_mm, 2);
+    } else if (ray) {
+      csv.out() << ",,";
+    }
     csv.out() << '\n';
     times.out() << i << ',' << fixed(o.render_s, 2) << ',' << fixed(o.track_s, 2) << ','
                 << fixed(o.validate_s, 2) << ',';
@@ -211,17 +228,32 @@ void write_csv(const SweepSpec& spec, const std::vector<SweepPoint>& points,
   times.commit();
 }
 
+// One quantity a sweep plot draws against the first axis.
+struct PlotMetric {
+  const char* name;
+  double (*value)(const Evaluation&);
+};
+
+const PlotMetric kMpjpe{"MPJPE", [](const Evaluation& e) { return e.mpjpe_mm; }};
+const PlotMetric kPaMpjpe{"PA-MPJPE", [](const Evaluation& e) { return e.pa_mpjpe_mm; }};
+const PlotMetric kAlongRay{"along the ray",
+                           [](const Evaluation& e) { return e.ray ? e.ray->along_mm : NAN; }};
+const PlotMetric kAcrossRay{"across the ray",
+                            [](const Evaluation& e) { return e.ray ? e.ray->across_mm : NAN; }};
+
+// `metrics` against the first axis: one series per metric and combination of the other axes'
+// labels (in order of first appearance).
 std::string plot_svg(const SweepSpec& spec, const std::vector<SweepPoint>& points,
-                     const std::vector<SweepOutcome>& outcomes) {
+                     const std::vector<SweepOutcome>& outcomes, const std::string& title,
+                     const std::vector<PlotMetric>& metrics) {
   const SweepAxis& axis = spec.axes.front();
   LinePlot plot;
-  plot.title = "MPJPE against " + axis.name;
+  plot.title = title + " against " + axis.name;
   plot.x_label = axis.name;
   plot.y_label = "mm";
   plot.markers = true;
   const bool numeric = axis.numeric();
   if (!numeric) plot.x_categories = axis.labels;
-  // One series per combination of the other axes' labels, in order of first appearance.
   std::map<std::vector<std::string>, size_t> series_of;
   const auto x_of = [&](const std::string& label) {
     const size_t k = std::find(axis.labels.begin(), axis.labels.end(), label) - axis.labels.begin();
@@ -231,23 +263,50 @@ std::string plot_svg(const SweepSpec& spec, const std::vector<SweepPoint>& point
     const std::vector<std::string> rest(points[i].labels.begin() + 1, points[i].labels.end());
     auto [it, added] = series_of.emplace(rest, plot.series.size());
     if (added) {
-      std::string name = "MPJPE";
+      std::string others;
       for (size_t a = 1; a < spec.axes.size(); ++a) {
-        name += (a == 1 ? " (" : ", ") + spec.axes[a].name + " " + rest[a - 1];
+        others += (a == 1 ? " (" : ", ") + spec.axes[a].name + " " + rest[a - 1];
       }
-      plot.series.push_back({spec.axes.size() > 1 ? name + ")" : name, {}, {}});
-      if (spec.axes.size() == 1) plot.series.push_back({"PA-MPJPE", {}, {}});
+      if (!others.empty()) others += ")";
+      for (const PlotMetric& m : metrics) plot.series.push_back({m.name + others, {}, {}});
     }
     const double x = x_of(points[i].labels.front());
     const auto& ev = outcomes[i].evaluation;
-    plot.series[it->second].x.push_back(x);
-    plot.series[it->second].y.push_back(ev ? ev->mpjpe_mm : std::nan(""));
-    if (spec.axes.size() == 1) {
-      plot.series[it->second + 1].x.push_back(x);
-      plot.series[it->second + 1].y.push_back(ev ? ev->pa_mpjpe_mm : std::nan(""));
+    for (size_t m = 0; m < metrics.size(); ++m) {
+      plot.series[it->second + m].x.push_back(x);
+      plot.series[it->second + m].y.push_back(ev ? metrics[m].value(*ev) : std::nan(""));
     }
   }
   return line_plot_svg(plot);
+}
+
+// "label / label / ..." of a point's axes, as the text tables show it.
+std::string point_label(const SweepPoint& point) {
+  std::string label;
+  for (const auto& l : point.labels) label += (label.empty() ? "" : " / ") + l;
+  return label;
+}
+
+std::string ray_value(const SweepOutcome& o, double RaySplit::*part) {
+  return o.evaluation && o.evaluation->ray ? fixed((*o.evaluation->ray).*part, 1) : "-";
+}
+
+std::string html_table_ray(const SweepSpec& spec, const std::vector<SweepPoint>& points,
+                           const std::vector<SweepOutcome>& outcomes) {
+  std::string s =
+      "<h2>Depth ambiguity</h2>\n<p>One camera: the mean error along the camera's ray through "
+      "each true joint (depth) and across it (the image plane).</p>\n<table>\n<tr><th>#</th>";
+  for (const auto& a : spec.axes) s += "<th>" + xml_escape(a.name) + "</th>";
+  s += "<th>along the ray mm</th><th>across the ray mm</th></tr>\n";
+  for (size_t i = 0; i < outcomes.size(); ++i) {
+    s += "<tr><td>" + std::to_string(i) + "</td>";
+    for (const auto& l : points[i].labels) s += "<td>" + xml_escape(l) + "</td>";
+    s += "<td>" + ray_value(outcomes[i], &RaySplit::along_mm) + "</td><td>" +
+         ray_value(outcomes[i], &RaySplit::across_mm) + "</td></tr>\n";
+  }
+  return s + "</table>\n" +
+         plot_svg(spec, points, outcomes, "Error along and across the camera ray",
+                  {kAlongRay, kAcrossRay});
 }
 
 std::string html_table(const SweepSpec& spec, const std::vector<SweepPoint>& points,
@@ -370,8 +429,7 @@ std::string sweep_table_text(const SweepSpec& spec, const std::vector<SweepPoint
   line(spec.axes.front().name, {"MPJPE mm", "PA-MPJPE mm", "PCK@100", "failed", "mm", "frames/s"},
        "worst joint");
   for (size_t i = 0; i < outcomes.size(); ++i) {
-    std::string label;
-    for (const auto& l : points[i].labels) label += (label.empty() ? "" : " / ") + l;
+    const std::string label = point_label(points[i]);
     if (!outcomes[i].evaluation) {
       s += "  " + label + "  failed: " + outcomes[i].error + "\n";
       continue;
@@ -385,6 +443,20 @@ std::string sweep_table_text(const SweepSpec& spec, const std::vector<SweepPoint
       std::vector<std::string> cells;
       for (size_t c = 0; c < values.size(); ++c) cells.push_back(cell(kColumns[c], values[c]));
       line(name, cells, std::string(name) == "worst" ? sum->worst_joint : "");
+    }
+  }
+  if (has_ray_split(outcomes)) {
+    s += "Depth ambiguity (one camera): mean error along and across the camera ray, mm\n";
+    std::snprintf(buf, sizeof buf, "  %-24s %9s %9s\n", spec.axes.front().name.c_str(), "along",
+                  "across");
+    s += buf;
+    for (size_t i = 0; i < outcomes.size(); ++i) {
+      if (!outcomes[i].evaluation) continue;
+      const std::string label = point_label(points[i]);
+      std::snprintf(buf, sizeof buf, "  %-24s %9s %9s\n", label.c_str(),
+                    ray_value(outcomes[i], &RaySplit::along_mm).c_str(),
+                    ray_value(outcomes[i], &RaySplit::across_mm).c_str());
+      s += buf;
     }
   }
   if (std::none_of(outcomes.begin(), outcomes.end(),
@@ -411,8 +483,7 @@ std::string sweep_table_text(const SweepSpec& spec, const std::vector<SweepPoint
   for (size_t i = 0; i < outcomes.size(); ++i) {
     if (!outcomes[i].keypoints2d) continue;
     const KeypointScores& k = *outcomes[i].keypoints2d;
-    std::string label;
-    for (const auto& l : points[i].labels) label += (label.empty() ? "" : " / ") + l;
+    const std::string label = point_label(points[i]);
     std::vector<std::string> cells = {fixed(k.coco.ap, 3)};
     for (int c : k2dClasses) cells.push_back(text_number(group_2d(k, c).median_px(), 2));
     for (int c : k2dClasses) cells.push_back(text_number(group_2d(k, c).miss_rate(), 1, 100, "%"));
@@ -439,7 +510,9 @@ std::string sweep_point_folder(size_t index, const SweepPoint& point) {
 void write_sweep_tables(const SweepSpec& spec, const std::vector<SweepPoint>& points,
                         const std::vector<SweepOutcome>& outcomes, const fs::path& out) {
   write_csv(spec, points, outcomes, out);
-  const std::string svg = plot_svg(spec, points, outcomes);
+  const std::string svg =
+      plot_svg(spec, points, outcomes, "MPJPE",
+               spec.axes.size() == 1 ? std::vector{kMpjpe, kPaMpjpe} : std::vector{kMpjpe});
   write_text_atomic(out / "mpjpe.svg", svg);
   const std::string title = spec.title.empty() ? "simcap stress sweep" : spec.title;
   write_text_atomic(
@@ -452,6 +525,7 @@ void write_sweep_tables(const SweepSpec& spec, const std::vector<SweepPoint>& po
           xml_escape(title) + "</h1>\n<p>Sweep file <code>" + xml_escape(spec.file.string()) +
           "</code>; base: " + xml_escape(config_text(spec.base)) + ".</p>\n" +
           html_table(spec, points, outcomes, out) + svg +
+          (has_ray_split(outcomes) ? html_table_ray(spec, points, outcomes) : "") +
           (has_detector(points) ? html_table_2d(spec, points, outcomes, out) : "") +
           "</body>\n</html>\n");
 }

@@ -11,6 +11,7 @@
 #include "models/pose.h"
 #include "validate/evaluation.h"
 #include "validate/metrics.h"
+#include "validate/report_html.h"
 
 namespace simcap {
 namespace {
@@ -99,6 +100,21 @@ TEST(Metrics, OneCameraSplitsTheErrorAlongAndAcrossItsRays) {
   EXPECT_NEAR(ev.mpjpe_mm, 50.0, 1e-9);
   ASSERT_TRUE(ev.per_joint[3].ray);
   EXPECT_NEAR(ev.per_joint[3].ray->along_mm, 30.0, 1e-9);
+
+  // Per frame: a second frame tracked exactly halves the means over the take.
+  in = input_of({truth, truth}, {est, truth});
+  in.camera_centre = centre;
+  const Evaluation two = evaluate(in);
+  ASSERT_TRUE(two.per_frame[0].ray && two.per_frame[1].ray);
+  EXPECT_NEAR(two.per_frame[0].ray->along_mm, 30.0, 1e-9);
+  EXPECT_NEAR(two.per_frame[0].ray->across_mm, 40.0, 1e-9);
+  EXPECT_NEAR(two.per_frame[1].ray->along_mm, 0.0, 1e-12);
+  EXPECT_NEAR(two.ray->across_mm, 20.0, 1e-9);
+  const std::string html = report_html(two, {});
+  EXPECT_NE(html.find("<h2>Depth ambiguity</h2>"), std::string::npos);
+  EXPECT_NE(html.find("along 15.0 mm, across 20.0 mm"), std::string::npos);
+  EXPECT_EQ(report_html(evaluate(input_of({truth}, {est})), {}).find("Depth ambiguity"),
+            std::string::npos);
 }
 
 TEST(Metrics, PckCountsErrorsAtOrBelowTheThreshold) {

@@ -353,5 +353,43 @@ vary:
       << text;
 }
 
+// A stand-in one-camera loop: the camera far along -x, so fake_loop's error (along x) is all
+// along its rays.
+SweepOutcome fake_one_camera_loop(const SweepPoint& point, const fs::path& dir) {
+  SweepOutcome o = fake_loop(point, dir);
+  const double along = o.evaluation->mpjpe_mm;
+  o.evaluation->ray = RaySplit{along, 0.0};
+  return o;
+}
+
+TEST(Sweep, OneCameraPointsSplitTheErrorAlongAndAcrossTheRay) {
+  TempDir dir;
+  const SweepSpec spec = load_sweep(write_sweep(dir, R"(scene: ../scenes/room.yaml
+track: {method: monocular}
+vary:
+  - {name: cameras, parameter: rig.count, values: [2, 3]}
+)"));
+  const auto outcomes = run_sweep(spec, dir / "out", fake_one_camera_loop, true);
+  CsvReader csv(dir / "out" / "table.csv",
+                {"point", "cameras", "status", "frames", "mpjpe_mm", "pa_mpjpe_mm", "pck_50mm",
+                 "pck_100mm", "pck_150mm", "rmse_mean_mm", "wrists_elbows_mm", "failed_fraction",
+                 "worst_joint", "worst_joint_mm", "report", "along_ray_mm", "across_ray_mm"});
+  ASSERT_TRUE(csv.next());
+  EXPECT_NEAR(csv.number(15), 45.0, 0.01);
+  EXPECT_NEAR(csv.number(16), 0.0, 1e-9);
+  ASSERT_TRUE(csv.next());  // the failed point keeps the columns, empty
+  EXPECT_EQ(csv.text(15), "");
+  EXPECT_FALSE(csv.next());
+  const std::string html = read_text(dir / "out" / "table.html");
+  EXPECT_NE(html.find("<h2>Depth ambiguity</h2>"), std::string::npos);
+  EXPECT_NE(html.find("Error along and across the camera ray against cameras"), std::string::npos);
+  const std::string text = sweep_table_text(spec, sweep_points(spec), outcomes);
+  const size_t row = text.find("\n  2 ", text.find("Depth ambiguity"));
+  ASSERT_NE(row, std::string::npos) << text;
+  EXPECT_EQ(text.substr(row + 1, text.find('\n', row + 1) - row - 1),
+            "  2                             45.0       0.0")
+      << text;
+}
+
 }  // namespace
 }  // namespace simcap
