@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "apps/simcap/commands.h"
+#include "apps/simcap/gesture_summary.h"
 #include "core/error.h"
 #include "tracker/unzueta/gesture_job.h"
 
@@ -25,28 +26,7 @@ int run_gestures(const GesturesArgs& args) {
     sources.push_back({args.inputs[i], args.inputs[i + 1]});
   }
   const tracker::GestureResults r = tracker::run_gestures(sources, args.out, args.options);
-  std::printf("simcap gestures: %zu corpora, leave-one-subject-out\n", sources.size());
-  for (const auto& c : r.corpora) {
-    std::printf("  %s: %zu spotted, %ld of %ld true gestures found, held poses %ld/%ld\n",
-                c.name.c_str(), c.spotted.size(), c.matched, c.truth_count, c.pose_correct,
-                c.pose_frames);
-  }
-  std::printf("  spotting precision %.3f recall %.3f F1 %.3f\n", r.precision, r.recall, r.f1);
-  for (const auto& [kind, conf] : r.recognition) {
-    std::printf("  recognition %s: %ld/%ld = %.3f\n",
-                std::string(name_of(tracker::kGestureClassifiers, kind)).c_str(), conf.correct,
-                conf.total, conf.accuracy);
-  }
-  std::printf("  held poses (knn): %ld/%ld = %.3f\n", r.poses.correct, r.poses.total,
-              r.poses.accuracy);
-  std::printf("  per-limb label stream: %.3f of labelled frames\n", r.label_accuracy);
-  const auto knn = r.recognition.find(tracker::GestureClassifierKind::knn);
-  if (knn != r.recognition.end()) {
-    std::printf("confusion (knn):\n%s", tracker::confusion_text(knn->second).c_str());
-  }
-  std::printf("report: %s\n", (args.out / "gestures.json").string().c_str());
-  std::printf("spotting_f1=%.4f recognition_accuracy=%.4f\n", r.f1,
-              knn == r.recognition.end() ? 0.0 : knn->second.accuracy);
+  std::printf("%s", gestures_summary_text(r, args.out).c_str());
   return 0;
 }
 

@@ -38,7 +38,7 @@ std::vector<SpottedGesture> spot(const GestureCorpus& c, const GestureOptions& o
   std::vector<SpottedGesture> out;
   for (int l = 0; l < 2; ++l) {
     const auto energy = kinetic_pseudo_energy(c.signals.hand[l], c.fps);
-    for (const Segment& s : spot_gestures(energy, o.spotting)) {
+    for (const SpottedStretch& s : spot_gestures(energy, o.spotting)) {
       out.push_back(
           {kGestureLimbs[l], c.signals.frames[s.first], c.signals.frames[s.last], "", 0, {}});
     }

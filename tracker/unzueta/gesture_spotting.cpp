@@ -19,8 +19,9 @@ int spotting_delay(const std::vector<double>& psE, int t, int history, double th
   return t - starting_point;
 }
 
-std::vector<Segment> spot_gestures(const std::vector<double>& psE, const SpottingParams& params) {
-  std::vector<Segment> out;
+std::vector<SpottedStretch> spot_gestures(const std::vector<double>& psE,
+                                          const SpottingParams& params) {
+  std::vector<SpottedStretch> out;
   const int n = static_cast<int>(psE.size());
   double sum = 0;
   bool active = false, confirmed = false;

@@ -31,7 +31,7 @@ std::vector<double> kinetic_pseudo_energy(const std::vector<Eigen::Vector3d>& x,
 // is below the threshold (0 when none is).
 int spotting_delay(const std::vector<double>& psE, int t, int history, double threshold);
 
-struct Segment {
+struct SpottedStretch {
   int first = 0, last = 0;  // indices into the signal, inclusive
 };
 
@@ -39,6 +39,7 @@ struct Segment {
 // confirmed without its `drop_largest` largest values), both ends
 // moved back by the delay Algorithm 14 gives where the stretch is first detected. A stretch still
 // open at the end of the signal ends at its last index.
-std::vector<Segment> spot_gestures(const std::vector<double>& psE, const SpottingParams& params);
+std::vector<SpottedStretch> spot_gestures(const std::vector<double>& psE,
+                                          const SpottingParams& params);
 
 }  // namespace simcap::tracker

@@ -34,7 +34,7 @@ std::vector<double> pulses(int n, const std::vector<std::pair<int, int>>& on, do
   return e;
 }
 
-void expect_segments(const std::vector<Segment>& got,
+void expect_segments(const std::vector<SpottedStretch>& got,
                      const std::vector<std::pair<int, int>>& want) {
   ASSERT_EQ(got.size(), want.size());
   for (size_t i = 0; i < want.size(); ++i) {
@@ -321,6 +321,39 @@ TEST(GesturesCommand, ScoresRenderedCorporaAndNamesBadInput) {
                 "gestures " + g1 + "/gt " + g1 + "/gt " + g2 + " " + g2 + "/gt -o " + out, &text),
             1);
   EXPECT_NE(text.find("gestures.csv"), std::string::npos) << text;
+}
+
+// `simcap loop --subjects`: render, track and validate each subject, then the gestures of all;
+// a scene without gestures is refused after its first subject, with no gesture scores written.
+TEST(GesturesCommand, LoopOverSubjectsEndsInGestureScores) {
+  testing::TempDir tmp;
+  const std::string scenes = std::string(SIMCAP_SOURCE_DIR) + "/scenes/";
+  const std::string out = (tmp / "loop").string();
+  std::string text;
+  ASSERT_EQ(testing::run_simcap("loop " + scenes + "gestures.yaml -o " + out +
+                                    " --subjects 2 --seed 3 --frames 450 --set "
+                                    "rig.resolution=[160,120] --method sik --effectors gt "
+                                    "--no-media -q",
+                                &text),
+            0)
+      << text;
+  for (const char* subject : {"/subject3", "/subject4"}) {
+    EXPECT_TRUE(std::filesystem::exists(out + subject + "/report/metrics.json")) << subject;
+  }
+  const auto fields = testing::key_values(testing::last_line(text));
+  ASSERT_TRUE(fields.contains("spotting_f1")) << text;
+  std::ifstream in(out + "/gestures/gestures.json");
+  EXPECT_NEAR(nlohmann::json::parse(in)["spotting"]["f1"].get<double>(),
+              std::stod(fields.at("spotting_f1")), 1e-4);
+
+  const std::string walk = (tmp / "walk").string();
+  EXPECT_EQ(testing::run_simcap("loop " + scenes + "studio4.yaml -o " + walk +
+                                    " --subjects 2 --frames 3 --no-media -q",
+                                &text),
+            1);
+  EXPECT_NE(text.find("no gesture motion"), std::string::npos) << text;
+  EXPECT_FALSE(std::filesystem::exists(walk + "/gestures"));
+  EXPECT_FALSE(std::filesystem::exists(walk + "/subject2"));
 }
 
 }  // namespace
