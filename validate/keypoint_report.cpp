@@ -8,7 +8,7 @@
 #include "core/atomic_file.h"
 #include "core/dataset_actors.h"
 #include "validate/report_html.h"
-#include "validate/svg_plot.h"
+#include "core/svg_plot.h"
 
 namespace simcap {
 namespace {

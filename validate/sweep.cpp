@@ -13,7 +13,7 @@
 #include "core/csv.h"
 #include "core/error.h"
 #include "core/progress.h"
-#include "validate/svg_plot.h"
+#include "core/svg_plot.h"
 
 namespace simcap {
 namespace fs = std::filesystem;

@@ -42,7 +42,8 @@ void add_gestures(CLI::App& app, Action& action) {
                   "(joints3d.csv; DATASET/gt itself scores the truth); one pair per subject")
       ->required()
       ->check(CLI::ExistingDirectory);
-  cmd->add_option("-o,--output", args.out, "Folder for gestures.json and spotted.csv")->required();
+  cmd->add_option("-o,--output", args.out, "Folder for gestures.json, spotted.csv and report.html")
+      ->required();
   auto& o = args.options;
   cmd->add_option("--smooth", o.smooth_sigma,
                   "Gaussian smoothing of the tracked paths over time, sigma in frames (0: none)")
@@ -72,8 +73,10 @@ void add_gestures(CLI::App& app, Action& action) {
   cmd->footer(
       "Each pair is one subject's corpus; each is recognised by classifiers (K-NN and an SVM,\n"
       "OpenCV ml) trained on the spotted gestures and held poses of the others. Writes\n"
-      "OUT/gestures.json (spotting precision/recall/F1, confusion matrices, accuracies) and\n"
-      "OUT/spotted.csv; the last stdout line is spotting_f1=F recognition_accuracy=A.\n"
+      "OUT/gestures.json (spotting precision/recall/F1, confusion matrices, accuracies),\n"
+      "OUT/spotted.csv and OUT/report.html (the scores, and per subject and hand the\n"
+      "pseudo-energy against the threshold with the true and spotted gestures); the last line is "
+      "spotting_f1=F recognition_accuracy=A.\n"
       "Examples:\n"
       "  simcap render scenes/gestures.yaml -o out/g1 --seed 1\n"
       "  simcap render scenes/gestures.yaml -o out/g2 --seed 2\n"

@@ -31,7 +31,8 @@ std::string gestures_summary_text(const tracker::GestureResults& r,
   if (knn != r.recognition.end()) {
     s += "confusion (knn):\n" + tracker::confusion_text(knn->second);
   }
-  s += "report: " + (out / "gestures.json").string() + "\n";
+  s += "report: " + (out / "report.html").string() + "\n";
+  s += "scores: " + (out / "gestures.json").string() + "\n";
   line("spotting_f1=%.4f recognition_accuracy=%.4f\n", r.f1,
        knn == r.recognition.end() ? 0.0 : knn->second.accuracy);
   return s;

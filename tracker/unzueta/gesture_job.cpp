@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/joint_track.h"
 #include "tracker/common/dataset.h"
+#include "tracker/unzueta/gesture_report.h"
 
 namespace simcap::tracker {
 namespace fs = std::filesystem;
@@ -140,6 +141,7 @@ GestureResults run_gestures(const std::vector<GestureSource>& sources, const fs:
   j["poses"] = confusion_json(r.poses);
   j["label_accuracy"] = rounded(r.label_accuracy);
   write_text_atomic(out / "gestures.json", j.dump(2) + "\n");
+  write_text_atomic(out / "report.html", gestures_report_html(corpora, r, options));
   return r;
 }
 

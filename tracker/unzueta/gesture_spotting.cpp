@@ -11,6 +11,17 @@ std::vector<double> kinetic_pseudo_energy(const std::vector<Eigen::Vector3d>& x,
   return e;
 }
 
+std::vector<double> history_mean(const std::vector<double>& psE, int history) {
+  std::vector<double> mean(psE.size());
+  double sum = 0;
+  for (size_t t = 0; t < psE.size(); ++t) {
+    sum += psE[t];
+    if (t >= static_cast<size_t>(history)) sum -= psE[t - history];
+    mean[t] = sum / static_cast<double>(std::min<size_t>(t + 1, history));
+  }
+  return mean;
+}
+
 int spotting_delay(const std::vector<double>& psE, int t, int history, double threshold) {
   int starting_point = t;
   for (int i = std::max(0, t - (history - 1)); i <= t; ++i) {
@@ -23,7 +34,7 @@ std::vector<SpottedStretch> spot_gestures(const std::vector<double>& psE,
                                           const SpottingParams& params) {
   std::vector<SpottedStretch> out;
   const int n = static_cast<int>(psE.size());
-  double sum = 0;
+  const std::vector<double> history = history_mean(psE, params.history);
   bool active = false, confirmed = false;
   int start = 0, delay = 0;
   auto close = [&](int end) {
@@ -32,9 +43,7 @@ std::vector<SpottedStretch> spot_gestures(const std::vector<double>& psE,
   };
   std::vector<double> window;
   for (int t = 0; t < n; ++t) {
-    sum += psE[t];
-    if (t >= params.history) sum -= psE[t - params.history];
-    const double mean = sum / std::min(t + 1, params.history);
+    const double mean = history[t];
     if (!active && mean >= params.threshold) {
       delay = spotting_delay(psE, t, params.history, params.threshold);
       start = t - delay;

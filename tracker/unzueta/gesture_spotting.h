@@ -27,6 +27,10 @@ struct SpottingParams {
 // psE[i] = |x[i] - x[i-1]|^2 fps^2 / 2; psE[0] = 0.
 std::vector<double> kinetic_pseudo_energy(const std::vector<Eigen::Vector3d>& x, double fps);
 
+// mean[t]: the mean of psE over the history window [t-n+1, t] (fewer values at the start), the
+// quantity compared with the threshold.
+std::vector<double> history_mean(const std::vector<double>& psE, int history);
+
 // Algorithm 14 at frame t: t minus the last frame of the history window [t-n+1, t] whose psE
 // is below the threshold (0 when none is).
 int spotting_delay(const std::vector<double>& psE, int t, int history, double threshold);

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <random>
@@ -49,6 +50,12 @@ TEST(GestureSpotting, PseudoEnergyIsHalfTheSquaredSpeed) {
   EXPECT_DOUBLE_EQ(e[0], 0.0);
   EXPECT_NEAR(e[1], 0.5 * 3.0 * 3.0, 1e-12);
   EXPECT_NEAR(e[2], 0.5 * 6.0 * 6.0, 1e-12);
+}
+
+TEST(GestureSpotting, HistoryMeanByHand) {
+  // History of 3: the first two frames average what there is.
+  const std::vector<double> mean = history_mean({3, 0, 6, 3, 0}, 3);
+  EXPECT_EQ(mean, (std::vector<double>{3, 1.5, 3, 3, 3}));
 }
 
 TEST(GestureSpotting, Algorithm14DelayByHand) {
@@ -309,6 +316,16 @@ TEST(GesturesCommand, ScoresRenderedCorporaAndNamesBadInput) {
   EXPECT_NEAR(j["spotting"]["f1"].get<double>(), std::stod(fields.at("spotting_f1")), 1e-4);
   EXPECT_EQ(j["spotting"]["truth_gestures"].get<int>(), 2);
   EXPECT_TRUE(std::filesystem::exists(out + "/spotted.csv"));
+  // The page: the scores, and a plot per subject and hand with the threshold drawn.
+  std::ifstream page(out + "/report.html");
+  const std::string html((std::istreambuf_iterator<char>(page)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("Spotting: precision / recall / F1"), std::string::npos);
+  size_t plots = 0;
+  for (size_t at = html.find("<svg"); at != std::string::npos; at = html.find("<svg", at + 1)) {
+    ++plots;
+  }
+  EXPECT_EQ(plots, 4u);
+  EXPECT_NE(html.find("r_hand: mean pseudo-energy"), std::string::npos);
 
   EXPECT_EQ(testing::run_simcap("gestures " + g1 + " " + g1 + "/gt " + g2 + " -o " + out, &text),
             1);
