@@ -89,19 +89,21 @@ StickPose MoschiniTracker::best_upright(const Observation& obs, const StickPose*
   }
   std::stable_sort(fits.begin(), fits.end(),
                    [](const Fit& a, const Fit& b) { return a.score < b.score; });
-  Fit best = current ? Fit{options_.recovery.margin * score(*current, obs), *current}
+  const double current_score = current ? score(*current, obs) : 0.0;
+  Fit best = current ? Fit{options_.recovery.margin * current_score, *current}
                      : Fit{std::numeric_limits<double>::infinity(), {}};
   for (size_t i = 0; i < fits.size(); ++i) {
-    if (static_cast<int>(i) < options_.recovery.searched) {
-      search_limbs(targets, fits[i].pose);
-      fits[i].score = score(fits[i].pose, obs);
+    if (static_cast<int>(i) < options_.recovery.searched &&
+        (!current || fits[i].score < options_.recovery.search_within * current_score)) {
+      fits[i].score = search_limbs(targets, fits[i].pose, fits[i].score);
     }
     if (fits[i].score < best.score) best = fits[i];
   }
   return best.pose;
 }
 
-void MoschiniTracker::search_limbs(const IcpTargets& targets, StickPose& pose) const {
+double MoschiniTracker::search_limbs(const IcpTargets& targets, StickPose& pose,
+                                     std::optional<double> cost) const {
   struct Limb {
     std::array<int, 4> angles;  // -1: unused
     double mirror;              // sign of the abduction and twist: 1 on the left, -1 on the right
@@ -122,7 +124,7 @@ void MoschiniTracker::search_limbs(const IcpTargets& targets, StickPose& pose) c
   static constexpr std::array<std::array<double, 4>, 4> legs = {
       {{0.0, 0.0, 0.0, 0.0}, {0.0, -0.4, 0.3, 0.0}, {0.0, 0.3, 0.2, 0.0}, {0.0, -0.2, 0.8, 0.0}}};
   const auto& ranges = model_.ranges();
-  double best = refiner_.cost(targets, pose);
+  double best = cost ? *cost : refiner_.cost(targets, pose);
   for (const Limb& limb : limbs) {
     const StickPose base = pose;
     const auto configurations = limb.arm ? std::span<const std::array<double, 4>>(arms)
@@ -139,6 +141,7 @@ void MoschiniTracker::search_limbs(const IcpTargets& targets, StickPose& pose) c
       if (c < best) best = c, pose = trial;
     }
   }
+  return best;
 }
 
 namespace {
