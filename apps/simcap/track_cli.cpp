@@ -12,7 +12,7 @@ namespace simcap::cli {
 namespace {
 
 // Sweep keys and the options they set (sweep files name the voxel and noise with their unit).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 28> kSweepKeys{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 30> kSweepKeys{{
     {"method", "--method"},
     {"actor", "--actor"},
     {"silhouettes", "--silhouettes"},
@@ -35,6 +35,8 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 28> kSweepKe
     {"region_combine", "--region-combine"},
     {"work_height", "--work-height"},
     {"diffusion", "--diffusion"},
+    {"feet_sigma", "--feet-sigma"},
+    {"top_sigma", "--top-sigma"},
     {"floor", "--floor"},
     {"smooth", "--smooth"},
     {"cutoff_hz", "--cutoff"},
@@ -223,6 +225,16 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
   cmd->add_option("--diffusion", m.filter.diffusion,
                   "monocular: scale S of the particles' random diffusion (eq. 4.13)")
       ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+  cmd->add_option("--feet-sigma", m.score.sigma_feet_px,
+                  "monocular: spread in working pixels of the feet prior (the body's lowest "
+                  "extent against the silhouette's; the floor fixes the depth), 0: off")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--top-sigma", m.score.sigma_top_px,
+                  "monocular: spread in working pixels of the top prior (the body's highest "
+                  "extent against the silhouette's), 0: off")
+      ->check(CLI::Range(0.0, 1000.0))
       ->capture_default_str();
   TriangulateOptions& t = o.triangulate;
   cmd->add_option("--detections", t.detections,

@@ -27,6 +27,10 @@ FrameCues make_cues(const Camera& camera, const cv::Mat& image, const cv::Mat& s
   box.height -= box.height % factor;
 
   FrameCues cues;
+  if (!person.empty() && person.y + person.height < image.rows) {
+    cues.feet_row = person.y + person.height - 0.5;
+  }
+  if (!person.empty() && person.y > 0) cues.top_row = person.y - 0.5;
   cues.view = {&camera, box.x, box.y, factor, box.width / factor, box.height / factor};
   const int W = cues.view.width, H = cues.view.height;
   cues.cls.assign(static_cast<size_t>(W) * H, 0);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <opencv2/core/mat.hpp>
 #include <vector>
@@ -32,6 +33,12 @@ struct FrameCues {
   std::array<int, kMaxColourClasses + 1> class_area{};  // pixels per class
   std::vector<float> distance;                          // to the nearest image edge, working pixels
   float far = 0;  // the largest distance (no edge at all: width + height)
+  // The silhouette's lowest extent (full-resolution pixel coordinates, the bottom edge of its
+  // lowest row): where the feet stand. NaN when the silhouette is empty or touches the image's
+  // bottom (the feet are cut off).
+  double feet_row = NAN;
+  // Its highest extent (the top edge of its highest row); NaN when empty or touching the top.
+  double top_row = NAN;
   cv::Mat small;  // the colour crop at working resolution (diagnostics)
 
   std::uint8_t cls_at(int u, int v) const { return cls[v * view.width + u]; }

@@ -67,24 +67,32 @@ void render_labels(const BodyShape& shape, const std::vector<Eigen::Isometry3d>&
   if (out.u0 >= out.u1) out.u0 = out.u1 = out.v0 = out.v1 = 0;
 }
 
-cv::Rect body_box(const BodyShape& shape, const std::vector<Eigen::Isometry3d>& joint_world,
-                  const Camera& camera) {
-  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+Eigen::AlignedBox2d body_extent(const BodyShape& shape,
+                                const std::vector<Eigen::Isometry3d>& joint_world,
+                                const Camera& camera) {
+  Eigen::AlignedBox2d box;
   for (const Capsule& c : shape.capsules) {
     for (const auto& [end, radius] : {std::pair{c.a, c.ra}, std::pair{c.b, c.rb}}) {
       const Eigen::Vector3d p = camera.to_camera(joint_world[c.joint] * end);
       if (p.z() < 0.05) continue;
       const Eigen::Vector2d q = camera.project_camera(p);
       const double r = camera.K(0, 0) * radius / p.z();
-      x0 = std::min(x0, q.x() - r);
-      y0 = std::min(y0, q.y() - r);
-      x1 = std::max(x1, q.x() + r);
-      y1 = std::max(y1, q.y() + r);
+      box.extend(q - Eigen::Vector2d::Constant(r));
+      box.extend(q + Eigen::Vector2d::Constant(r));
     }
   }
-  if (!(x1 > x0) || !(y1 > y0)) return {};
+  return box;
+}
+
+cv::Rect body_box(const BodyShape& shape, const std::vector<Eigen::Isometry3d>& joint_world,
+                  const Camera& camera) {
+  const Eigen::AlignedBox2d box = body_extent(shape, joint_world, camera);
+  if (box.isEmpty() || !(box.max().x() > box.min().x()) || !(box.max().y() > box.min().y())) {
+    return {};
+  }
   const auto lo = [](double v) { return static_cast<int>(std::floor(std::clamp(v, -1e6, 1e6))); };
   const auto hi = [](double v) { return static_cast<int>(std::ceil(std::clamp(v, -1e6, 1e6))); };
+  const double x0 = box.min().x(), y0 = box.min().y(), x1 = box.max().x(), y1 = box.max().y();
   return {lo(x0), lo(y0), hi(x1) - lo(x0) + 1, hi(y1) - lo(y0) + 1};
 }
 

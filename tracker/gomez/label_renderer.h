@@ -44,8 +44,12 @@ struct LabelImage {
 void render_labels(const BodyShape& shape, const std::vector<Eigen::Isometry3d>& joint_world,
                    const View& view, LabelImage& out);
 
-// Full-resolution bounding box of the posed capsules in the camera's image (not clipped to it);
-// empty when every capsule is behind the camera.
+// Full-resolution extent of the posed capsules in the camera's image (not clipped to it), in
+// pixel coordinates; empty when every capsule is behind the camera.
+Eigen::AlignedBox2d body_extent(const BodyShape& shape,
+                                const std::vector<Eigen::Isometry3d>& joint_world,
+                                const Camera& camera);
+// body_extent in whole pixels.
 cv::Rect body_box(const BodyShape& shape, const std::vector<Eigen::Isometry3d>& joint_world,
                   const Camera& camera);
 

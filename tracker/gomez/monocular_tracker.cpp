@@ -63,7 +63,8 @@ TrackedFrame MonocularTracker::track(const cv::Mat& image, const cv::Mat& silhou
   } else if (options_.search == Search::particles) {
     out.filter = filter_->step(previous_, cues, frame);
     out.estimate = out.filter.best;
-    out.score = out.filter.score;
+    // Scored afresh: the filter keeps energies, whose terms its simplices mix.
+    out.score = scorer_->score(out.estimate, cues);
     out.evaluations = out.filter.evaluations;
   } else {
     const Registered r = register_pose(*scorer_, cues, estimate_, options_.registration);

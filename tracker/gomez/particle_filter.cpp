@@ -205,7 +205,7 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
       NelderMead nm(
           [&](const Eigen::VectorXd& z) {
             const Energy e = energy_of(embed(z));
-            return NelderMead::Terms(e.region, e.edge);
+            return NelderMead::Terms(e.terms());
           },
           project(dofs.lower()), project(dofs.upper()));
       nm.start(std::move(vertices));

@@ -13,7 +13,9 @@ namespace simcap::tracker::gomez {
 
 Energy energy(const Score& score, const ScoreOptions& options) {
   const double f = score.region / options.sigma_region, d = score.edge / options.sigma_edge_px;
-  return {0.5 * f * f, 0.5 * d * d};
+  const double e = options.sigma_feet_px > 0 ? score.feet / options.sigma_feet_px : 0.0;
+  const double t = options.sigma_top_px > 0 ? score.top / options.sigma_top_px : 0.0;
+  return {0.5 * f * f, 0.5 * d * d, 0.5 * (e * e + t * t)};
 }
 
 RegionModel region_model(const BodyShape& shape, const std::vector<std::uint8_t>& cell_class,
@@ -124,11 +126,28 @@ void PoseScorer::render(const State& x, const View& view, LabelImage& out) const
   render_labels(*shape_, forward_kinematics(dofs_->skeleton(), dofs_->pose(x)), view, out);
 }
 
+double feet_offset(double model_bottom, const FrameCues& cues) {
+  if (!std::isfinite(cues.feet_row) || !std::isfinite(model_bottom)) return 0.0;
+  return (model_bottom - cues.feet_row) / cues.view.factor;
+}
+
+double top_offset(double model_top, const FrameCues& cues) {
+  if (!std::isfinite(cues.top_row) || !std::isfinite(model_top)) return 0.0;
+  return (model_top - cues.top_row) / cues.view.factor;
+}
+
 Score PoseScorer::score(const State& x, const FrameCues& cues) const {
   thread_local LabelImage labels;
-  render(x, cues.view, labels);
-  return {region_cost(labels, region_, cues, options_.combine),
+  const auto world = forward_kinematics(dofs_->skeleton(), dofs_->pose(x));
+  render_labels(*shape_, world, cues.view, labels);
+  Score s{region_cost(labels, region_, cues, options_.combine),
           chamfer_cost(labels, cues, options_.occlusion_gap_m)};
+  if (options_.sigma_feet_px > 0 || options_.sigma_top_px > 0) {
+    const Eigen::AlignedBox2d box = body_extent(*shape_, world, *cues.view.camera);
+    s.feet = feet_offset(box.isEmpty() ? NAN : box.max().y(), cues);
+    s.top = top_offset(box.isEmpty() ? NAN : box.min().y(), cues);
+  }
+  return s;
 }
 
 }  // namespace simcap::tracker::gomez

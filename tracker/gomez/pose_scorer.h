@@ -3,6 +3,7 @@
 // (eq. 3.13), combined into the particle energy -log p(z|x) of eq. 4.12.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <vector>
 
@@ -36,17 +37,31 @@ struct ScoreOptions {
   // Where two capsules meet in the image, the nearer one's pixel is on an occluding contour
   // when the other lies this much further away (a forearm before the chest), metres.
   double occlusion_gap_m = 0.04;
+  // The feet prior (simcap's addition): the model's lowest extent against the silhouette's, a
+  // Gaussian of this spread in working pixels; 0 is off. The full body stands on the floor, so
+  // the row its feet project to fixes its distance from the camera, which the region and edge
+  // costs, nearly unchanged by a small change of scale, leave loose.
+  double sigma_feet_px = 3.0;
+  // The same for the top of the body against the silhouette's top (the body's known height
+  // against a crouch it does not get up from); 0 is off.
+  double sigma_top_px = 3.0;
 };
 
 struct Score {
   double region = 1.0;  // F in [0, 1]
   double edge = 0.0;    // D_C, working pixels
+  double feet = 0.0;    // model's lowest extent minus the silhouette's, working pixels (0: none)
+  double top = 0.0;     // model's highest extent minus the silhouette's, working pixels (0: none)
 };
 
-// F^2 / 2 sf^2 and D^2 / 2 sd^2: the negative log-likelihood's two terms.
+// F^2 / 2 sf^2, D^2 / 2 sd^2 and the feet prior's E^2 / 2 se^2: the negative log-likelihood's
+// terms.
 struct Energy {
-  double region = 0, edge = 0;
-  double total() const { return region + edge; }
+  double region = 0, edge = 0, feet = 0;
+  double total() const { return region + edge + feet; }
+  // The two terms Nelder-Mead weighs (regions first, then edges): the feet prior goes half to
+  // each, so that it counts in both steps and their sum is the total.
+  Eigen::Vector2d terms() const { return {region + 0.5 * feet, edge + 0.5 * feet}; }
 };
 Energy energy(const Score& score, const ScoreOptions& options);
 
@@ -69,6 +84,10 @@ double region_cost(const LabelImage& labels, const RegionModel& model, const Fra
 // 4-neighbour that is empty, off the image, or of another capsule at least `gap_m` further
 // away); `cues.far` when no contour shows.
 double chamfer_cost(const LabelImage& labels, const FrameCues& cues, double gap_m);
+// The feet prior's offset: `model_bottom` (full-resolution row of the posed body's lowest
+// extent) minus the silhouette's feet row, in working pixels; 0 when the frame has none.
+double feet_offset(double model_bottom, const FrameCues& cues);
+double top_offset(double model_top, const FrameCues& cues);
 // Whether a drawn pixel lies on the model's occluding contour (the rule of chamfer_cost).
 bool on_contour(const LabelImage& labels, int u, int v, double gap_m);
 

@@ -13,7 +13,7 @@ Registered register_pose(const PoseScorer& scorer, const FrameCues& cues, const 
   NelderMead nm(
       [&](const Eigen::VectorXd& x) {
         const Energy e = scorer.energy_of(x, cues);
-        return NelderMead::Terms(e.region, e.edge);
+        return NelderMead::Terms(e.terms());
       },
       dofs.lower(), dofs.upper());
   nm.start(start, options.simplex_size * dofs.steps());

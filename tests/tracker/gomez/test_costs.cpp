@@ -1,12 +1,14 @@
 // The render-and-compare pieces against independent computations: the capsule rasterizer against
 // the analytic disc a sphere projects to, the region cost against hand-counted pixels, and the
-// chamfer cost against a brute-force nearest-edge search.
+// chamfer cost against a brute-force nearest-edge search, the feet and top priors against
+// hand-computed offsets and the silhouette's rasterized extent.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <opencv2/imgproc.hpp>
 
+#include "tracker/gomez/frame_cues.h"
 #include "tracker/gomez/pose_scorer.h"
 
 namespace simcap::tracker::gomez {
@@ -171,6 +173,78 @@ TEST(ChamferCost, EqualsTheBruteForceNearestEdgeOverTheContour) {
   }
   ASSERT_GT(count, 50);
   EXPECT_NEAR(chamfer_cost(labels, cues, 0.04), sum / count, 1e-3);
+}
+
+TEST(BodyExtent, IsTheAnalyticDiscOfASphereAndTheRasterizedSilhouettesExtent) {
+  const Camera cam = test_camera();
+  const double r = 0.12, z = 3.0;
+  const BodyShape sphere = one_capsule(Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, 1, 0), r, r);
+  const Eigen::Vector2d centre = *cam.project(Eigen::Vector3d(0, 1, 0));
+  const double radius = cam.K(0, 0) * r / z;
+  const Eigen::AlignedBox2d box = body_extent(sphere, kIdentity, cam);
+  EXPECT_NEAR(box.min().x(), centre.x() - radius, 1e-9);
+  EXPECT_NEAR(box.max().y(), centre.y() + radius, 1e-9);
+  const cv::Rect rounded = body_box(sphere, kIdentity, cam);
+  EXPECT_LE(rounded.y, box.min().y());
+  EXPECT_GE(rounded.y + rounded.height, box.max().y());
+  // A slanted, tapered capsule: its lowest and highest drawn rows at full resolution lie within
+  // a pixel of the extent's.
+  const BodyShape slanted =
+      one_capsule(Eigen::Vector3d(-0.3, 0.5, 0.4), Eigen::Vector3d(0.2, 1.4, -0.3), 0.05, 0.11);
+  const View view{&cam, 0, 0, 1, cam.width, cam.height};
+  LabelImage labels;
+  render_labels(slanted, kIdentity, view, labels);
+  int top = cam.height, bottom = -1;
+  for (int v = 0; v < labels.height; ++v) {
+    for (int u = 0; u < labels.width; ++u) {
+      if (labels.at(u, v) == kNoCell) continue;
+      top = std::min(top, v);
+      bottom = std::max(bottom, v);
+    }
+  }
+  const Eigen::AlignedBox2d e = body_extent(slanted, kIdentity, cam);
+  EXPECT_NEAR(bottom + 0.5, e.max().y(), 1.0);
+  EXPECT_NEAR(top - 0.5, e.min().y(), 1.0);
+}
+
+TEST(FeetPrior, RowsComeFromTheSilhouetteUnlessItTouchesTheImagesBorder) {
+  const Camera cam = test_camera();
+  const ColourClasses classes = ColourClasses::uniform(1);
+  cv::Mat image(cam.height, cam.width, CV_8UC3, cv::Scalar(90, 90, 90));
+  cv::Mat mask(cam.height, cam.width, CV_8UC1, cv::Scalar(0));
+  mask(cv::Rect(100, 40, 30, 150)).setTo(255);  // rows 40..189
+  FrameCues cues = make_cues(cam, image, mask, classes, {}, {});
+  EXPECT_DOUBLE_EQ(cues.feet_row, 189.5);
+  EXPECT_DOUBLE_EQ(cues.top_row, 39.5);
+  mask(cv::Rect(100, 0, 30, cam.height)).setTo(255);  // feet and head cut off
+  cues = make_cues(cam, image, mask, classes, {}, {});
+  EXPECT_TRUE(std::isnan(cues.feet_row));
+  EXPECT_TRUE(std::isnan(cues.top_row));
+  EXPECT_EQ(feet_offset(200.0, cues), 0.0);
+  EXPECT_EQ(top_offset(10.0, cues), 0.0);
+}
+
+TEST(FeetPrior, OffsetsAndEnergyMatchAHandComputedCase) {
+  FrameCues cues;
+  cues.view.factor = 2;
+  cues.feet_row = 200.5;
+  cues.top_row = 50.5;
+  // In working pixels (full-resolution rows / 2): 6 px below, 12 px above.
+  EXPECT_DOUBLE_EQ(feet_offset(206.5, cues), 3.0);
+  EXPECT_DOUBLE_EQ(top_offset(38.5, cues), -6.0);
+  ScoreOptions o;
+  o.sigma_region = 0.08;
+  o.sigma_edge_px = 1.5;
+  o.sigma_feet_px = 3.0;
+  o.sigma_top_px = 3.0;
+  const Energy e = energy({0.16, 3.0, 3.0, -6.0}, o);
+  EXPECT_DOUBLE_EQ(e.region, 2.0);  // (0.16 / 0.08)^2 / 2
+  EXPECT_DOUBLE_EQ(e.edge, 2.0);
+  EXPECT_DOUBLE_EQ(e.feet, 0.5 * (1.0 + 4.0));
+  EXPECT_DOUBLE_EQ(e.total(), 6.5);
+  EXPECT_DOUBLE_EQ(e.terms().sum(), e.total());
+  o.sigma_feet_px = o.sigma_top_px = 0;  // off
+  EXPECT_DOUBLE_EQ(energy({0.16, 3.0, 3.0, -6.0}, o).feet, 0.0);
 }
 
 }  // namespace
