@@ -378,7 +378,7 @@ void Renderer::write_colour(int px, int py, const ShotState& shot, std::uint64_t
       rgb_rows[k / B][px + k % B] = cv::Vec3b(codes[k], codes[N + k], codes[2 * N + k]);
     }
   }
-  if (sensor_noise) {
+  if (sensor_noise && (noise_.rgb_sigma > 0 || noise_.depth_sigma_m > 0)) {
     add_sensor_noise(px, py, shot.rays->width(), shot.camera_key, frame_key, valid, rgb_rows,
                      depth_rows);
   }
