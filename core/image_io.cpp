@@ -50,9 +50,10 @@ void write_image(const fs::path& path, const cv::Mat& image, const ImageCompress
   const cv::Mat data = image.isContinuous() ? image : image.clone();
   // Encoded in memory, then written and checked by write_text_atomic: OpenImageIO's PNG writer
   // does not report a failed write (a full disk), which would leave a truncated image in place.
-  std::vector<unsigned char> bytes;
-  // Room for the raw pixels and headers: growing the buffer as the encoder appends to it would
-  // copy it several times.
+  // One buffer per thread, kept between images: a fresh one would be paged in anew for every
+  // image, and growing it as the encoder appends would copy it several times.
+  thread_local std::vector<unsigned char> bytes;
+  bytes.clear();
   bytes.reserve(data.total() * data.elemSize() + 4096);
   OIIO::Filesystem::IOVecOutput memory(bytes);
   if (exr) single_threaded_openexr();
