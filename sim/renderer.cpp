@@ -172,18 +172,16 @@ void Renderer::trace_camera_rays(const ShotState& shot, int px, int py, int samp
     std::copy_n(block + N, N, ray.dir_y);
     std::copy_n(block + 2 * N, N, ray.dir_z);
   } else {
+    alignas(64) float jx[N], jy[N];
     for (int k = 0; k < N; ++k) {
       const int x = px + k % B, y = py + k / B;
       const std::uint64_t pixel = static_cast<std::uint64_t>(y) * rays.width() + x;
       const std::uint64_t bits =
           random_bits_after(shot.jitter, {pixel, static_cast<std::uint64_t>(sample)});
-      const Eigen::Vector3f d = l.valid[k] ? rays.jittered_direction(x, y, uniform01(bits) - 0.5f,
-                                                                     uniform01(mix64(bits)) - 0.5f)
-                                           : Eigen::Vector3f(Eigen::Vector3f::UnitZ());
-      ray.dir_x[k] = d.x();
-      ray.dir_y[k] = d.y();
-      ray.dir_z[k] = d.z();
+      jx[k] = uniform01(bits) - 0.5f;
+      jy[k] = uniform01(mix64(bits)) - 0.5f;
     }
+    rays.jittered_block(px, py, jx, jy, l.valid, ray.dir_x, ray.dir_y, ray.dir_z);
   }
   const Eigen::Vector3f o = rays.origin();
   for (int k = 0; k < N; ++k) start_camera_ray(l.packet, k, o, static_cast<unsigned>(k));
