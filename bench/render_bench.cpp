@@ -172,14 +172,17 @@ RenderBenchResult run_render_benchmark(const fs::path& scene_file,
   render_options.overrides = options.overrides;
   render_options.quiet = options.quiet;
   RenderSummary summary;
+  const double cpu0 = cpu_seconds();
   try {
     summary = render_dataset(scene_file, out, render_options);
   } catch (...) {
     fs::remove_all(out);
     throw;
   }
+  const double render_cpu_s = cpu_seconds() - cpu0;
   fs::remove_all(out);
   result.frames = summary.frames;
+  result.frames_per_cpu_s = summary.frames * result.threads / render_cpu_s;
   result.cameras = summary.cameras;
   result.frames_per_s = summary.frames / summary.seconds;
   result.write_share = summary.write_seconds / (summary.seconds * result.threads);
@@ -254,6 +257,9 @@ void print_render_benchmark(const RenderBenchResult& result,
                "full render (RGB, depth, mask, parts, truth; images written): %d frames, "
                "%.2f frames/s, image writing %.0f%% of the CPU\n",
                result.frames, result.frames_per_s, 100 * result.write_share);
+  std::fprintf(out,
+               "the same per CPU-second x %d threads (what idle cores would give): %.2f frames/s\n",
+               result.threads, result.frames_per_cpu_s);
   std::fprintf(out, "rays per frame: %.0f camera + %.0f shadow\n", result.camera_rays_per_frame,
                result.shadow_rays_per_frame);
   for (const auto& p : result.embree_by_packet) {

@@ -23,6 +23,9 @@ struct RenderBenchResult {
   int frames = 0, cameras = 0, threads = 0;
   // Full render into a temporary folder: every image, table and plate written.
   double frames_per_s = 0;
+  // Frame sets per CPU-second of the process times the threads: what `threads` idle cores would
+  // reach if the frames kept them all busy (a shared machine slows frames_per_s, not this).
+  double frames_per_cpu_s = 0;
   double write_share = 0;  // image-writing thread-seconds / (wall seconds * threads)
   // Rays traced by the renderer (camera + shadow rays) per second of rendering (shading and
   // labels included, no writing), and by the bare loop: the same camera rays, then an

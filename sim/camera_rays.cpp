@@ -3,6 +3,7 @@
 #include <oneapi/tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/error.h"
 
@@ -40,13 +41,39 @@ CameraRays::CameraRays(const Camera& camera)
   });
 }
 
-Eigen::Vector3f CameraRays::jittered_direction(int x, int y, float jx, float jy) const {
+Eigen::Vector3f CameraRays::jittered_ray(int x, int y, float jx, float jy) const {
   const int w1 = camera_.width + 1;
   const size_t c = static_cast<size_t>(y) * w1 + x;
   const float ax = jx + 0.5f, ay = jy + 0.5f;
   const Eigen::Vector2f xy = (1 - ay) * ((1 - ax) * corners_[c] + ax * corners_[c + 1]) +
                              ay * ((1 - ax) * corners_[c + w1] + ax * corners_[c + w1 + 1]);
-  return (camera_to_world_ * Eigen::Vector3f(xy.x(), xy.y(), 1.f)).normalized();
+  return camera_to_world_ * Eigen::Vector3f(xy.x(), xy.y(), 1.f);
+}
+
+Eigen::Vector3f CameraRays::jittered_direction(int x, int y, float jx, float jy) const {
+  return jittered_ray(x, y, jx, jy).normalized();
+}
+
+void CameraRays::jittered_block(int px, int py, const float* jx, const float* jy, const int* valid,
+                                float* dir_x, float* dir_y, float* dir_z) const {
+  alignas(64) float squared[kLanes];
+  for (int k = 0; k < kLanes; ++k) {
+    const Eigen::Vector3f d = valid[k]
+                                  ? jittered_ray(px + k % kBlock, py + k / kBlock, jx[k], jy[k])
+                                  : Eigen::Vector3f(Eigen::Vector3f::UnitZ());
+    dir_x[k] = d.x();
+    dir_y[k] = d.y();
+    dir_z[k] = d.z();
+    squared[k] = valid[k] ? d.squaredNorm() : 0.f;
+  }
+  // Eigen's normalized(), four lanes at a time: the square roots and divisions are what cost,
+  // and each lane's are the same IEEE operations as jittered_direction's.
+  for (int k = 0; k < kLanes; ++k) {
+    const float norm = squared[k] > 0 ? std::sqrt(squared[k]) : 1.f;
+    dir_x[k] /= norm;
+    dir_y[k] /= norm;
+    dir_z[k] /= norm;
+  }
 }
 
 }  // namespace simcap

@@ -1,6 +1,8 @@
 #include "sim/mask_boxes.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <string>
 
 #include "core/error.h"
@@ -13,6 +15,15 @@ std::vector<MaskBox> mask_boxes(const cv::Mat& mask, int actors) {
   for (int y = 0; y < mask.rows; ++y) {
     const std::uint8_t* row = mask.ptr<std::uint8_t>(y);
     for (int x = 0; x < mask.cols; ++x) {
+      // Most of a mask is background: skip it eight pixels at a time.
+      if (x % 8 == 0 && x + 8 <= mask.cols) {
+        std::uint64_t eight;
+        std::memcpy(&eight, row + x, 8);
+        if (eight == 0) {
+          x += 7;
+          continue;
+        }
+      }
       if (!row[x]) continue;
       const int a = actors == 1 ? 0 : row[x] - 1;
       if (a < 0 || a >= actors) {

@@ -17,11 +17,18 @@ inline std::uint64_t mix64(std::uint64_t z) {
   return z ^ (z >> 31);
 }
 
+// Continues a tuple's hash with more keys: random_bits(seed, {a, b, c}) equals
+// random_bits_after(random_bits(seed, {a, b}), {c}), so that keys shared by many values (stream,
+// camera, frame) are hashed once rather than for every pixel.
+inline std::uint64_t random_bits_after(std::uint64_t state,
+                                       std::initializer_list<std::uint64_t> keys) {
+  for (const std::uint64_t k : keys) state = mix64(state ^ k);
+  return state;
+}
+
 // A random 64-bit value for the tuple (seed, keys...).
 inline std::uint64_t random_bits(std::uint64_t seed, std::initializer_list<std::uint64_t> keys) {
-  std::uint64_t h = mix64(seed);
-  for (const std::uint64_t k : keys) h = mix64(h ^ k);
-  return h;
+  return random_bits_after(mix64(seed), keys);
 }
 
 // A key for a name, so that a stream follows the name rather than a position in some list.

@@ -29,7 +29,8 @@ struct Renderer::ShotState {
   const CameraRays* rays = nullptr;
   RayTimes times;
   std::vector<LightSource> lights;
-  std::uint64_t camera_key = 0;
+  // Each random stream's hash of (seed, stream, camera, frame), which every pixel continues.
+  std::uint64_t jitter = 0, rgb_noise = 0, depth_noise = 0, shutter = 0;
   bool blur = false;
   float gain = 1;
 };
@@ -87,7 +88,12 @@ RayCounts Renderer::render(const std::vector<Shot>& shots, int frame,
     st.lights = lights_at(shot.light_time_s);
     // Keyed by name: a camera rendered alone (render --cameras) gets the images it gets in its
     // rig.
-    st.camera_key = text_key(shot.rays->camera().name);
+    const std::uint64_t camera_key = text_key(shot.rays->camera().name);
+    const auto frame_key = static_cast<std::uint64_t>(static_cast<std::int64_t>(frame));
+    st.jitter = random_bits(seed_, {kJitter, camera_key, frame_key});
+    st.rgb_noise = random_bits(seed_, {kRgbNoise, camera_key, frame_key});
+    st.depth_noise = random_bits(seed_, {kDepthNoise, camera_key, frame_key});
+    st.shutter = random_bits(seed_, {kShutter, camera_key, frame_key});
     st.blur = shot.times.exposure > 0 && samples_ > 1;
     states.push_back(std::move(st));
     const int w = shot.rays->width(), h = shot.rays->height();
@@ -116,8 +122,8 @@ RayCounts Renderer::render(const std::vector<Shot>& shots, int frame,
     RayCounts local;
     for (size_t i = range.begin(); i != range.end(); ++i) {
       const Tile& t = tiles[i];
-      const RayCounts n = render_tile(states[t.shot], t, frame, views[shots[t.shot].view],
-                                      sensor_noise, tile_luminance[i]);
+      const RayCounts n = render_tile(states[t.shot], t, views[shots[t.shot].view], sensor_noise,
+                                      tile_luminance[i]);
       local.camera += n.camera;
       local.shadow += n.shadow;
     }
@@ -139,7 +145,7 @@ RayCounts Renderer::render(const std::vector<Shot>& shots, int frame,
     }
     tbb::parallel_for(size_t{0}, tiles.size(), [&](size_t i) {
       const Tile& t = tiles[i];
-      expose_tile(states[t.shot], t, frame, views[shots[t.shot].view], sensor_noise);
+      expose_tile(states[t.shot], t, views[shots[t.shot].view], sensor_noise);
     });
   }
   return {camera_rays.load(), shadow_rays.load()};
@@ -156,10 +162,9 @@ struct Renderer::Lanes {
 };
 
 void Renderer::trace_camera_rays(const ShotState& shot, int px, int py, int sample,
-                                 std::uint64_t frame_key, Lanes& l) const {
+                                 Lanes& l) const {
   constexpr int N = Lanes::N, B = CameraRays::kBlock;
   const CameraRays& rays = *shot.rays;
-  const std::uint64_t camera_key = shot.camera_key;
   auto& ray = l.packet.ray;
   if (sample == 0) {
     const float* block = rays.block(px / B, py / B);
@@ -167,18 +172,16 @@ void Renderer::trace_camera_rays(const ShotState& shot, int px, int py, int samp
     std::copy_n(block + N, N, ray.dir_y);
     std::copy_n(block + 2 * N, N, ray.dir_z);
   } else {
+    alignas(64) float jx[N], jy[N];
     for (int k = 0; k < N; ++k) {
       const int x = px + k % B, y = py + k / B;
       const std::uint64_t pixel = static_cast<std::uint64_t>(y) * rays.width() + x;
-      const std::uint64_t bits = random_bits(
-          seed_, {kJitter, camera_key, frame_key, pixel, static_cast<std::uint64_t>(sample)});
-      const Eigen::Vector3f d = l.valid[k] ? rays.jittered_direction(x, y, uniform01(bits) - 0.5f,
-                                                                     uniform01(mix64(bits)) - 0.5f)
-                                           : Eigen::Vector3f(Eigen::Vector3f::UnitZ());
-      ray.dir_x[k] = d.x();
-      ray.dir_y[k] = d.y();
-      ray.dir_z[k] = d.z();
+      const std::uint64_t bits =
+          random_bits_after(shot.jitter, {pixel, static_cast<std::uint64_t>(sample)});
+      jx[k] = uniform01(bits) - 0.5f;
+      jy[k] = uniform01(mix64(bits)) - 0.5f;
     }
+    rays.jittered_block(px, py, jx, jy, l.valid, ray.dir_x, ray.dir_y, ray.dir_z);
   }
   const Eigen::Vector3f o = rays.origin();
   for (int k = 0; k < N; ++k) start_camera_ray(l.packet, k, o, static_cast<unsigned>(k));
@@ -189,8 +192,8 @@ void Renderer::trace_camera_rays(const ShotState& shot, int px, int py, int samp
     for (int k = 0; k < N; ++k) {
       const std::uint64_t pixel =
           static_cast<std::uint64_t>(py + k / B) * rays.width() + px + k % B;
-      const float u = uniform01(random_bits(
-          seed_, {kShutter, camera_key, frame_key, pixel, static_cast<std::uint64_t>(sample)}));
+      const float u =
+          uniform01(random_bits_after(shot.shutter, {pixel, static_cast<std::uint64_t>(sample)}));
       const float t =
           ray.time[k] + shot.times.exposure * ((static_cast<float>(sample - 1) + u) * part - 0.5f);
       ray.time[k] = std::clamp(t, 0.f, 1.f);
@@ -331,19 +334,18 @@ int Renderer::add_light(const LightSource& light, Lanes& l) const {
   return shadow_rays;
 }
 
-void Renderer::add_sensor_noise(int px, int py, int width, std::uint64_t camera_key,
-                                std::uint64_t frame_key, const int* valid,
+void Renderer::add_sensor_noise(int px, int py, const ShotState& shot, const int* valid,
                                 cv::Vec3b* const* rgb_rows, float* const* depth_rows) const {
   constexpr int B = CameraRays::kBlock;
   for (int k = 0; k < Lanes::N; ++k) {
     if (!valid[k]) continue;
     const int x = px + k % B, y = py + k / B;
-    const std::uint64_t pixel = static_cast<std::uint64_t>(y) * width + x;
+    const std::uint64_t pixel = static_cast<std::uint64_t>(y) * shot.rays->width() + x;
     cv::Vec3b& rgb = rgb_rows[k / B][x];
     if (noise_.rgb_sigma > 0) {
       for (int c = 0; c < 3; ++c) {
-        const float n = standard_normal(random_bits(
-            seed_, {kRgbNoise, camera_key, frame_key, 3 * pixel + static_cast<std::uint64_t>(c)}));
+        const float n = standard_normal(
+            random_bits_after(shot.rgb_noise, {3 * pixel + static_cast<std::uint64_t>(c)}));
         const float level = std::round(rgb[c] + static_cast<float>(noise_.rgb_sigma) * n);
         rgb[c] = static_cast<std::uint8_t>(std::clamp(level, 0.f, 255.f));
       }
@@ -351,14 +353,14 @@ void Renderer::add_sensor_noise(int px, int py, int width, std::uint64_t camera_
     float& depth = depth_rows[k / B][x];
     if (noise_.depth_sigma_m > 0 && std::isfinite(depth)) {
       depth += static_cast<float>(noise_.depth_sigma_m) *
-               standard_normal(random_bits(seed_, {kDepthNoise, camera_key, frame_key, pixel}));
+               standard_normal(random_bits_after(shot.depth_noise, {pixel}));
     }
   }
 }
 
-void Renderer::write_colour(int px, int py, const ShotState& shot, std::uint64_t frame_key,
-                            const int* valid, float* linear, bool sensor_noise,
-                            cv::Vec3b* const* rgb_rows, float* const* depth_rows) const {
+void Renderer::write_colour(int px, int py, const ShotState& shot, const int* valid, float* linear,
+                            bool sensor_noise, cv::Vec3b* const* rgb_rows,
+                            float* const* depth_rows) const {
   constexpr int N = Lanes::N, B = CameraRays::kBlock;
   static_assert(3 * N == SrgbEncoder::kBatch);
   alignas(64) std::uint8_t codes[3 * N];
@@ -378,18 +380,16 @@ void Renderer::write_colour(int px, int py, const ShotState& shot, std::uint64_t
       rgb_rows[k / B][px + k % B] = cv::Vec3b(codes[k], codes[N + k], codes[2 * N + k]);
     }
   }
-  if (sensor_noise) {
-    add_sensor_noise(px, py, shot.rays->width(), shot.camera_key, frame_key, valid, rgb_rows,
-                     depth_rows);
+  if (sensor_noise && (noise_.rgb_sigma > 0 || noise_.depth_sigma_m > 0)) {
+    add_sensor_noise(px, py, shot, valid, rgb_rows, depth_rows);
   }
 }
 
-RayCounts Renderer::render_tile(const ShotState& shot, const Tile& tile, int frame,
-                                RenderedView& view, bool sensor_noise, double& luminance) const {
+RayCounts Renderer::render_tile(const ShotState& shot, const Tile& tile, RenderedView& view,
+                                bool sensor_noise, double& luminance) const {
   constexpr int N = Lanes::N, B = CameraRays::kBlock;
   const CameraRays& rays = *shot.rays;
   const bool single_actor = embree_.actor_count() == 1;
-  const auto frame_key = static_cast<std::uint64_t>(static_cast<std::int64_t>(frame));
   // With motion blur the first ray (pixel centre, exposure's middle) gives the labels only and
   // samples_ more, spread over the exposure, the colour; otherwise it is a colour sample too.
   const int first_colour_sample = shot.blur ? 1 : 0;
@@ -415,7 +415,7 @@ RayCounts Renderer::render_tile(const ShotState& shot, const Tile& tile, int fra
         counts.camera += l.valid[k] ? last_sample + 1 : 0;
       }
       for (int s = 0; s <= last_sample; ++s) {
-        trace_camera_rays(shot, px, py, s, frame_key, l);
+        trace_camera_rays(shot, px, py, s, l);
         look_up_surfaces(l);
         if (s == 0) {
           const float* z_scale = rays.block(px / B, py / B) + 3 * N;
@@ -452,7 +452,7 @@ RayCounts Renderer::render_tile(const ShotState& shot, const Tile& tile, int fra
         linear[2 * N + k] = scale * l.blue[k];
       }
       if (!auto_exposure_) {
-        write_colour(px, py, shot, frame_key, l.valid, linear, sensor_noise, rgb_rows, depth_rows);
+        write_colour(px, py, shot, l.valid, linear, sensor_noise, rgb_rows, depth_rows);
         continue;
       }
       // Auto exposure needs the whole image's mean first: keep the colour for expose_tile().
@@ -467,10 +467,9 @@ RayCounts Renderer::render_tile(const ShotState& shot, const Tile& tile, int fra
   return counts;
 }
 
-void Renderer::expose_tile(const ShotState& shot, const Tile& tile, int frame, RenderedView& view,
+void Renderer::expose_tile(const ShotState& shot, const Tile& tile, RenderedView& view,
                            bool sensor_noise) const {
   constexpr int N = Lanes::N, B = CameraRays::kBlock;
-  const auto frame_key = static_cast<std::uint64_t>(static_cast<std::int64_t>(frame));
   for (int py = tile.y0; py < tile.y1; py += B) {
     float* depth_rows[B];
     cv::Vec3b* rgb_rows[B];
@@ -488,7 +487,7 @@ void Renderer::expose_tile(const ShotState& shot, const Tile& tile, int frame, R
         const cv::Vec3f c = valid[k] ? view.linear.at<cv::Vec3f>(y, x) : cv::Vec3f();
         for (int ch = 0; ch < 3; ++ch) linear[ch * N + k] = shot.gain * c[ch];
       }
-      write_colour(px, py, shot, frame_key, valid, linear, sensor_noise, rgb_rows, depth_rows);
+      write_colour(px, py, shot, valid, linear, sensor_noise, rgb_rows, depth_rows);
     }
   }
 }

@@ -88,23 +88,20 @@ class Renderer {
   };
   struct Lanes;      // one ray packet and the per-pixel state of its 4x4 block (renderer.cpp)
   struct ShotState;  // a shot's lights and keys while it renders
-  RayCounts render_tile(const ShotState& shot, const Tile& tile, int frame, RenderedView& view,
+  RayCounts render_tile(const ShotState& shot, const Tile& tile, RenderedView& view,
                         bool sensor_noise, double& luminance) const;
   // The steps for one packet: camera rays for one sample, the surfaces they hit, one light.
-  void trace_camera_rays(const ShotState& shot, int px, int py, int sample, std::uint64_t frame_key,
-                         Lanes& lanes) const;
+  void trace_camera_rays(const ShotState& shot, int px, int py, int sample, Lanes& lanes) const;
   void look_up_surfaces(Lanes& lanes) const;
   int add_light(const LightSource& light, Lanes& lanes) const;  // returns shadow rays traced
   // Encodes a block's linear colour (structure of arrays) into the image rows, adds noise.
-  void write_colour(int px, int py, const ShotState& shot, std::uint64_t frame_key,
-                    const int* valid, float* linear, bool sensor_noise, cv::Vec3b* const* rgb_rows,
-                    float* const* depth_rows) const;
+  void write_colour(int px, int py, const ShotState& shot, const int* valid, float* linear,
+                    bool sensor_noise, cv::Vec3b* const* rgb_rows, float* const* depth_rows) const;
   // Auto exposure's second pass over a tile: the stored linear colour times the gain.
-  void expose_tile(const ShotState& shot, const Tile& tile, int frame, RenderedView& view,
+  void expose_tile(const ShotState& shot, const Tile& tile, RenderedView& view,
                    bool sensor_noise) const;
-  void add_sensor_noise(int px, int py, int width, std::uint64_t camera_key,
-                        std::uint64_t frame_key, const int* valid, cv::Vec3b* const* rgb_rows,
-                        float* const* depth_rows) const;
+  void add_sensor_noise(int px, int py, const ShotState& shot, const int* valid,
+                        cv::Vec3b* const* rgb_rows, float* const* depth_rows) const;
   std::vector<LightSource> lights_at(double time_s) const;
 
   const EmbreeScene& embree_;

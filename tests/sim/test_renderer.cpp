@@ -189,6 +189,33 @@ TEST(CameraRays, PixelRaysAreTheCameraModelsAndJitteredRaysInterpolateIt) {
   EXPECT_LT(worst_jitter, 1e-5);  // ~0.005 px at this focal length
 }
 
+TEST(CameraRays, BlockOfJitteredRaysIsBitIdenticalToSingleRays) {
+  const Camera cam = distorted_camera({0.2, 1.4, -2.0}, {0.0, 1.0, 1.0});
+  const CameraRays rays(cam);
+  constexpr int N = CameraRays::kLanes, B = CameraRays::kBlock;
+  for (int py = 0; py < cam.height; py += 3 * B) {
+    for (int px = 0; px < cam.width; px += 5 * B) {
+      alignas(64) float jx[N], jy[N], dx[N], dy[N], dz[N];
+      alignas(64) int valid[N];
+      for (int k = 0; k < N; ++k) {
+        jx[k] = static_cast<float>((px * 37 + py * 11 + k * 7) % 101) / 100 - 0.5f;
+        jy[k] = static_cast<float>((px * 13 + py * 29 + k * 5) % 101) / 100 - 0.5f;
+        valid[k] = px + k % B < cam.width && py + k / B < cam.height && k != 6 ? -1 : 0;
+      }
+      rays.jittered_block(px, py, jx, jy, valid, dx, dy, dz);
+      for (int k = 0; k < N; ++k) {
+        const Eigen::Vector3f d =
+            valid[k] ? rays.jittered_direction(px + k % B, py + k / B, jx[k], jy[k])
+                     : Eigen::Vector3f(Eigen::Vector3f::UnitZ());
+        // Bit for bit: the renderer's images must not depend on which of the two it calls.
+        EXPECT_EQ(dx[k], d.x()) << px << "," << py << " lane " << k;
+        EXPECT_EQ(dy[k], d.y()) << px << "," << py << " lane " << k;
+        EXPECT_EQ(dz[k], d.z()) << px << "," << py << " lane " << k;
+      }
+    }
+  }
+}
+
 TEST(Srgb, EncoderInvertsTheTransferCurveForEveryCode) {
   const SrgbEncoder encode;
   for (int code = 0; code < 256; ++code) {
