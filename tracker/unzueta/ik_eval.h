@@ -41,15 +41,25 @@ struct IkClip {
 // otherwise the anatomical axes. `max_frames` > 0 keeps the first frames only.
 IkClip load_ik_clip(const std::filesystem::path& bvh, bool identify_hinges, int max_frames = 0);
 
-// The settings the three solvers share in the benchmark.
+// The settings the solvers share in the benchmark.
 struct IkSolverSettings {
   SikPelvisWeights pelvis_weights;
   bool limits = true;
   double dls_damping = 0.75;  // metres (see DlsOptions::damping)
 };
-// "sik", "ccd" or "dls" on `body`; throws Error for another name.
+// The solvers simcap implements, in Table 10's column order: sik, ccd, pinv, dls, dls-svd, sdls.
+const std::vector<std::string>& ik_solver_names();
+// One of ik_solver_names() on `body`; throws Error for another name.
 std::unique_ptr<IkSolver> make_ik_solver(std::string_view method, const SikBody& body,
                                          const IkSolverSettings& settings);
+
+// A column of the thesis' Table 10: the averages over its Boxing, Jump Kick and Playground clips
+// (Pentium 4, 2.66 GHz). `method` is simcap's name where simcap implements it.
+struct Table10Column {
+  std::string method;
+  double position_error, orientation_error, ms_per_frame;
+};
+const std::vector<Table10Column>& thesis_table10();
 
 struct IkEvalResult {
   std::vector<int> joints;  // scored joint indices
