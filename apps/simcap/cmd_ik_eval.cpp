@@ -21,6 +21,7 @@ struct IkEvalArgs {
   double damping = 0.75;
   bool no_limits = false;
   bool anatomical_hinges = false;
+  bool known_orientations = false;
   int frames = 0;
 };
 
@@ -55,7 +56,8 @@ IkEvalResult evaluate_solver(const IkEvalArgs& a, const IkClip& clip, const std:
   settings.dls_damping = a.damping;
   const auto solver = make_ik_solver(method, clip.body, settings);
   const std::vector<int> joints = table10_joints(clip.body);
-  const IkEvalResult r = evaluate_ik(*solver, clip.motion, joints, table10_height(clip.body));
+  const IkEvalResult r =
+      evaluate_ik(*solver, clip.motion, joints, table10_height(clip.body), a.known_orientations);
   const Skeleton& sk = clip.body.skeleton();
 
   CsvWriter frames(out / "frame_errors.csv", {"frame", "position_error", "orientation_error"});
@@ -81,6 +83,7 @@ IkEvalResult evaluate_solver(const IkEvalArgs& a, const IkClip& clip, const std:
                             {"pelvis_weights", a.pelvis_weights},
                             {"limits", !a.no_limits},
                             {"hinge_axes", a.anatomical_hinges ? "anatomical" : "from the clip"},
+                            {"known_orientations", a.known_orientations},
                             {"position_error", r.position_error},
                             {"orientation_error", r.orientation_error},
                             {"ms_per_frame", r.ms_per_frame}};
@@ -201,6 +204,9 @@ void add_ik_eval(CLI::App& app, Action& action) {
   cmd->add_flag("--no-limits", args.no_limits, "Do not apply the biomechanical joint limits");
   cmd->add_flag("--anatomical-hinges", args.anatomical_hinges,
                 "Use anatomical elbow and knee axes instead of the clip's own");
+  cmd->add_flag("--known-orientations", args.known_orientations,
+                "Also give the true pelvis and head orientations (SIK: Alg. 10-11 spine twist; "
+                "not Table 10's setting; the baselines ignore them)");
   cmd->add_option("--frames", args.frames, "Evaluate only the first N frames (default: all)")
       ->check(non_negative_number());
   cmd->footer(

@@ -136,7 +136,7 @@ const std::vector<Table10Column>& thesis_table10() {
 }
 
 IkEvalResult evaluate_ik(IkSolver& solver, const Motion& truth, const std::vector<int>& joints,
-                         double height) {
+                         double height, bool known_orientations) {
   const SikBody& body = solver.body();
   if (joints.empty() || !(height > 0.0)) throw Error("ik-eval: no joints to score");
   IkEvalResult r;
@@ -151,7 +151,11 @@ IkEvalResult evaluate_ik(IkSolver& solver, const Motion& truth, const std::vecto
       throw Error("ik-eval: the motion is not of the solver's skeleton");
     }
     body.forward(pose, true_rotation, true_position);
-    const SikTargets targets = body.targets(true_position);
+    SikTargets targets = body.targets(true_position);
+    if (known_orientations) {
+      targets.pelvis_orientation = true_rotation[body.root()];
+      targets.head_orientation = true_rotation[body.head()];
+    }
     const auto start = std::chrono::steady_clock::now();
     const Pose& solved = solver.solve(targets);
     const auto stop = std::chrono::steady_clock::now();

@@ -75,8 +75,10 @@ struct IkEvalResult {
 
 // Runs `solver` (reset first) on the end-effectors of every frame of `truth`, a motion of the
 // solver's own skeleton. The orientation of a joint is compared relative to its parent (the
-// root's in the world) as the magnitude of the exponential map of R_true^-1 R_solved.
+// root's in the world) as the magnitude of the exponential map of R_true^-1 R_solved. With
+// `known_orientations` the targets also carry the true pelvis and head orientations (SIK's
+// Alg. 10-11 use them; the baselines ignore them).
 IkEvalResult evaluate_ik(IkSolver& solver, const Motion& truth, const std::vector<int>& joints,
-                         double height);
+                         double height, bool known_orientations = false);
 
 }  // namespace simcap
