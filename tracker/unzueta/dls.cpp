@@ -1,6 +1,5 @@
 #include "tracker/unzueta/dls.h"
 
-#include <Eigen/Cholesky>
 #include <cmath>
 #include <numbers>
 
@@ -116,7 +115,6 @@ const Pose& DlsSolver::solve(const SikTargets& targets) {
   const int n = static_cast<int>(dofs_.size());
   Eigen::MatrixXd jacobian(15, n);
   Eigen::VectorXd residual(15);
-  const double lambda2 = options_.damping * options_.damping;
   for (int iteration = 0; iteration < options_.max_iterations && error >= options_.tolerance;
        ++iteration) {
     for (int i = 0; i < 5; ++i)
@@ -143,9 +141,7 @@ const Pose& DlsSolver::solve(const SikTargets& targets) {
             axis.cross(position_[effector_joint_[i]] - position_[d.joint]);
       }
     }
-    Eigen::MatrixXd normal = jacobian * jacobian.transpose();
-    normal.diagonal().array() += lambda2;
-    angles_ += jacobian.transpose() * normal.ldlt().solve(residual);
+    angles_ += jacobian_step(options_.update, jacobian, residual, options_.damping);
     if (options_.limits) {
       int k = 0;
       for (int j : ball_joints_) {

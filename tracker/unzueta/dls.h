@@ -1,5 +1,5 @@
-// The DLS baseline of Unzueta's Table 10 (§4.7.1, after Nakamura & Hanafusa; Wampler 1986): ball
-// joints as XYZ follower Euler angles, hinges, all end-effectors solved together per iteration.
+// The Jacobian baselines of Unzueta's Table 10 (§4.7.1): pseudoinverse, DLS, DLS with SVD and SDLS
+// on ball joints as XYZ follower Euler angles and hinges, all end-effectors solved together.
 #pragma once
 
 #include <Eigen/Core>
@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tracker/unzueta/ik_baseline_options.h"
+#include "tracker/unzueta/jacobian_step.h"
 #include "tracker/unzueta/sik_body.h"
 #include "tracker/unzueta/sik_ik_solver.h"
 #include "tracker/unzueta/sik_limits.h"
@@ -21,6 +22,9 @@ struct DlsOptions : IkBaselineOptions {
   // (singular values of a few decimetres to a metre) as the thesis describes; in metres 75 would
   // freeze the body and in millimetres (0.075 m) barely damp it.
   double damping = 0.75;
+  // The thesis runs all its Jacobian methods on the same model, limits and stopping rule; only
+  // the update differs.
+  JacobianUpdate update = JacobianUpdate::kDls;
 };
 
 class DlsSolver final : public IkSolver {
@@ -29,7 +33,7 @@ class DlsSolver final : public IkSolver {
   DlsSolver(const DlsSolver&) = delete;
   DlsSolver& operator=(const DlsSolver&) = delete;
 
-  std::string_view name() const override { return "dls"; }
+  std::string_view name() const override { return jacobian_update_name(options_.update); }
   const SikBody& body() const override { return body_; }
   const Pose& solve(const SikTargets& targets) override;
   void reset() override;

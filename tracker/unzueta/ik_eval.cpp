@@ -106,19 +106,37 @@ std::unique_ptr<IkSolver> make_ik_solver(std::string_view method, const SikBody&
     o.limits = settings.limits;
     return std::make_unique<CcdSolver>(body, o);
   }
-  if (method == "dls") {
+  for (JacobianUpdate update : {JacobianUpdate::kPseudoinverse, JacobianUpdate::kDls,
+                                JacobianUpdate::kDlsSvd, JacobianUpdate::kSdls}) {
+    if (method != jacobian_update_name(update)) continue;
     DlsOptions o;
     o.pelvis_weights = settings.pelvis_weights;
     o.limits = settings.limits;
     o.damping = settings.dls_damping;
+    o.update = update;
     return std::make_unique<DlsSolver>(body, o);
   }
   throw Error("unknown inverse-kinematics method '" + std::string(method) +
-              "' (expected sik, ccd or dls)");
+              "' (expected sik, ccd, pinv, dls, dls-svd or sdls)");
+}
+
+const std::vector<std::string>& ik_solver_names() {
+  static const std::vector<std::string> names = {"sik", "ccd", "pinv", "dls", "dls-svd", "sdls"};
+  return names;
+}
+
+const std::vector<Table10Column>& thesis_table10() {
+  static const std::vector<Table10Column> columns = {
+      {"kma", 0.0277, 0.3050, 1.09},      {"ccd", 0.0294, 0.4544, 0.89},
+      {"pinv", 0.0279, 0.3452, 18.23},    {"dls", 0.0291, 0.3313, 9.35},
+      {"dls-svd", 0.0292, 0.3315, 16.92}, {"sdls", 0.0268, 0.3268, 15.10},
+      {"pik", 0.0264, 0.3392, 32.17},     {"sik", 0.0246, 0.2942, 0.44},
+      {"tgbsik", 0.0262, 0.3108, 1.90}};
+  return columns;
 }
 
 IkEvalResult evaluate_ik(IkSolver& solver, const Motion& truth, const std::vector<int>& joints,
-                         double height) {
+                         double height, bool known_orientations) {
   const SikBody& body = solver.body();
   if (joints.empty() || !(height > 0.0)) throw Error("ik-eval: no joints to score");
   IkEvalResult r;
@@ -133,7 +151,11 @@ IkEvalResult evaluate_ik(IkSolver& solver, const Motion& truth, const std::vecto
       throw Error("ik-eval: the motion is not of the solver's skeleton");
     }
     body.forward(pose, true_rotation, true_position);
-    const SikTargets targets = body.targets(true_position);
+    SikTargets targets = body.targets(true_position);
+    if (known_orientations) {
+      targets.pelvis_orientation = true_rotation[body.root()];
+      targets.head_orientation = true_rotation[body.head()];
+    }
     const auto start = std::chrono::steady_clock::now();
     const Pose& solved = solver.solve(targets);
     const auto stop = std::chrono::steady_clock::now();

@@ -41,15 +41,25 @@ struct IkClip {
 // otherwise the anatomical axes. `max_frames` > 0 keeps the first frames only.
 IkClip load_ik_clip(const std::filesystem::path& bvh, bool identify_hinges, int max_frames = 0);
 
-// The settings the three solvers share in the benchmark.
+// The settings the solvers share in the benchmark.
 struct IkSolverSettings {
   SikPelvisWeights pelvis_weights;
   bool limits = true;
   double dls_damping = 0.75;  // metres (see DlsOptions::damping)
 };
-// "sik", "ccd" or "dls" on `body`; throws Error for another name.
+// The solvers simcap implements, in Table 10's column order: sik, ccd, pinv, dls, dls-svd, sdls.
+const std::vector<std::string>& ik_solver_names();
+// One of ik_solver_names() on `body`; throws Error for another name.
 std::unique_ptr<IkSolver> make_ik_solver(std::string_view method, const SikBody& body,
                                          const IkSolverSettings& settings);
+
+// A column of the thesis' Table 10: the averages over its Boxing, Jump Kick and Playground clips
+// (Pentium 4, 2.66 GHz). `method` is simcap's name where simcap implements it.
+struct Table10Column {
+  std::string method;
+  double position_error, orientation_error, ms_per_frame;
+};
+const std::vector<Table10Column>& thesis_table10();
 
 struct IkEvalResult {
   std::vector<int> joints;  // scored joint indices
@@ -65,8 +75,10 @@ struct IkEvalResult {
 
 // Runs `solver` (reset first) on the end-effectors of every frame of `truth`, a motion of the
 // solver's own skeleton. The orientation of a joint is compared relative to its parent (the
-// root's in the world) as the magnitude of the exponential map of R_true^-1 R_solved.
+// root's in the world) as the magnitude of the exponential map of R_true^-1 R_solved. With
+// `known_orientations` the targets also carry the true pelvis and head orientations (SIK's
+// Alg. 10-11 use them; the baselines ignore them).
 IkEvalResult evaluate_ik(IkSolver& solver, const Motion& truth, const std::vector<int>& joints,
-                         double height);
+                         double height, bool known_orientations = false);
 
 }  // namespace simcap

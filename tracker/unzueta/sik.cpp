@@ -28,8 +28,12 @@ void SikSolver::reset() {
 
 const Pose& SikSolver::solve(const SikTargets& targets) {
   std::fill(pose_.rotations.begin(), pose_.rotations.end(), Eigen::Quaterniond::Identity());
-  const Eigen::Matrix3d pelvis_frame = pelvis_.estimate(targets);
+  const Eigen::Matrix3d pelvis_frame = targets.pelvis_orientation
+                                           ? targets.pelvis_orientation->toRotationMatrix()
+                                           : pelvis_.estimate(targets);
   spine_.solve(targets, pelvis_frame, options_.limits, pose_);
+  if (targets.head_orientation)
+    spine_.twist_to_head(*targets.head_orientation, options_.limits, pose_);
   body_.forward(pose_, world_.rotation, world_.position);
   for (int side : {kLeft, kRight}) {
     limbs_.place_leg(side, targets.ankle[side], options_.limits, pose_, world_);

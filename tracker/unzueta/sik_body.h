@@ -21,6 +21,9 @@ struct SikTargets {
   Eigen::Vector3d head = Eigen::Vector3d::Zero();
   std::array<Eigen::Vector3d, 2> wrist{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   std::array<Eigen::Vector3d, 2> ankle{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  // World orientations of humanoid_root and skullbase when measured (thesis Alg. 10-11): the
+  // pelvis then replaces the estimate of §4.2 and the spine is twisted to the head's.
+  std::optional<Eigen::Quaterniond> pelvis_orientation, head_orientation;
 };
 
 // A two-bone limb A-B-C (shoulder-elbow-wrist or hip-knee-ankle).

@@ -141,4 +141,46 @@ void SikSpine::solve(const SikTargets& targets, const Eigen::Matrix3d& pelvis_fr
   pose.root_position = targets.pelvis - 0.5 * (current_length_ - target_length) * line;
 }
 
+void SikSpine::twist_to_head(const Eigen::Quaterniond& head, bool limits, Pose& pose) const {
+  constexpr double kTwistError = 0.01;  // radians
+  constexpr int kMaxSweeps = 20;
+  const int n = static_cast<int>(chain_.size());
+  std::vector<Eigen::Quaterniond> world(n);
+  std::vector<Eigen::Vector3d> at(n);
+  Eigen::Vector3d head_at;
+  auto forward = [&] {
+    world[0] = pose.rotations[chain_[0]];
+    at[0] = pose.root_position;
+    for (int i = 1; i < n; ++i) {
+      at[i] = at[i - 1] + world[i - 1] * body_.offset(chain_[i]);
+      world[i] = world[i - 1] * pose.rotations[chain_[i]];
+    }
+    head_at = at[n - 1] + world[n - 1] * body_.offset(body_.head());
+  };
+  // Signed angle about the pelvis-head line from the current skullbase X to the wanted one.
+  auto remaining = [&] {
+    const Eigen::Vector3d u = (head_at - at[0]).normalized();
+    auto across = [&](const Eigen::Vector3d& x) { return Eigen::Vector3d(x - x.dot(u) * u); };
+    const Eigen::Vector3d now = across(world[n - 1] * Eigen::Vector3d::UnitX());
+    const Eigen::Vector3d want = across(head * Eigen::Vector3d::UnitX());
+    return std::atan2(now.cross(want).dot(u), now.dot(want));
+  };
+  forward();
+  if ((head_at - at[0]).norm() < 1e-9 || n < 2) return;
+  double angle = remaining();
+  for (int sweep = 0; sweep < kMaxSweeps && std::abs(angle) > kTwistError; ++sweep) {
+    for (int i = 1; i < n; ++i) {
+      const Eigen::Vector3d axis = head_at - at[i];
+      if (axis.norm() < 1e-9) continue;
+      const Eigen::Quaterniond turn(Eigen::AngleAxisd(angle / (n - 1), axis.normalized()));
+      Eigen::Quaterniond& local = pose.rotations[chain_[i]];
+      local = (world[i - 1].conjugate() * turn * world[i - 1] * local).normalized();
+      if (limits) local = limits_.clamp(chain_[i], local);
+      forward();
+    }
+    angle = remaining();
+  }
+  pose.rotations[body_.head()] = (world[n - 1].conjugate() * head).normalized();
+}
+
 }  // namespace simcap

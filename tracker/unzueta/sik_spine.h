@@ -21,6 +21,11 @@ class SikSpine {
   // to `pelvis_frame`'s as that allows, the length mismatch split evenly between both ends.
   void solve(const SikTargets& targets, const Eigen::Matrix3d& pelvis_frame, bool limits,
              Pose& pose);
+  // Alg. 10-11 after solve(): turns the vertebrae about their lines to the skullbase, an equal
+  // share each, until the skullbase's X axis meets `head`'s about the pelvis-head line (within
+  // 0.01 rad, 20 sweeps, each vertebra kept in its limits), then sets the skullbase to `head`
+  // (world). The neck is not measured separately (the thesis then takes the head's).
+  void twist_to_head(const Eigen::Quaterniond& head, bool limits, Pose& pose) const;
   // Forgets the previous frame (the bend that the next search starts from).
   void reset();
 
