@@ -117,7 +117,17 @@ void Perception::shape(const std::vector<cv::Mat>& given, Observation& obs) cons
   hull_.carve(silhouettes, obs.hull);
   obs.hull_ms += ms_since(t);
   t = Clock::now();
-  obs.centerline = centerline(obs.hull, options_.skeleton);
+  // With cover, the hull holds the others' volume next to the person too (the gate keeps what
+  // lies within reach), and its slices' centroids would pull the limbs into them: the
+  // centerline comes from the person's own pixels. A limb hidden behind someone loses its
+  // centerline points there but keeps the outline views and the hull's containment.
+  if (covered.empty()) {
+    obs.centerline = centerline(obs.hull, options_.skeleton);
+  } else {
+    Occupancy own;
+    hull_.carve(given, own);
+    obs.centerline = centerline(own, options_.skeleton);
+  }
   obs.points.clear();
   obs.points.reserve(obs.centerline.size());
   for (const CenterlinePoint& p : obs.centerline) obs.points.push_back(p.position);

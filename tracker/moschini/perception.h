@@ -36,8 +36,9 @@ struct Observation {
   std::vector<SilhouetteView> views;    // per camera, when PerceptionOptions::views
   std::vector<cv::Mat> silhouettes;     // per camera, as extracted (8-bit, nonzero = person)
   // Per camera, where someone else may hide the person (the other actors' pixels of the
-  // ground-truth masks): the hull is carved and the views are built from silhouettes and
-  // cover, the rays come from the silhouettes alone. Empty when no one else is known.
+  // ground-truth masks; with background subtraction, the pixels in the others' colours): the
+  // hull is carved and the views are built from silhouettes and cover, the rays and the
+  // centerline come from the silhouettes alone. Empty when no one else is known.
   std::vector<cv::Mat> cover;
   GateResult gate;                     // what isolate() kept
   std::vector<double> silhouette_iou;  // per camera vs the dataset's masks, when asked for
