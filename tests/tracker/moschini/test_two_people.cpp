@@ -19,20 +19,25 @@ namespace fs = std::filesystem;
 using testing::run_simcap;
 using testing::TempDir;
 
+// `frames` frames of the scene from the clip's frame `first` (the scene's frame 0 is 120),
+// rendered into `dir`.
+fs::path render_two_people(const TempDir& dir, int frames, int first) {
+  const fs::path r = dir / "two";
+  std::string log;
+  const int status =
+      run_simcap(std::string("render ") + SIMCAP_SOURCE_DIR + "/scenes/two_people.yaml -o " +
+                     r.string() + " -q --frames " + std::to_string(frames) +
+                     " --set render.first_frame=" + std::to_string(first),
+                 &log);
+  EXPECT_EQ(status, 0) << log;
+  return r;
+}
+
 // Frames 40-53 of the scene: actor1 walks past 0.45 m in front of actor0 (frame 45) and hides
 // it from cam00.
 const fs::path& crossing() {
   static TempDir dir;
-  static const fs::path root = [] {
-    const fs::path r = dir / "two";
-    std::string log;
-    const int status =
-        run_simcap(std::string("render ") + SIMCAP_SOURCE_DIR + "/scenes/two_people.yaml -o " +
-                       r.string() + " -q --frames 14 --set render.first_frame=160",
-                   &log);
-    EXPECT_EQ(status, 0) << log;
-    return r;
-  }();
+  static const fs::path root = render_two_people(dir, 14, 160);
   return root;
 }
 
@@ -40,16 +45,7 @@ const fs::path& crossing() {
 // turns away; the track starts before they meet.
 const fs::path& approach() {
   static TempDir dir;
-  static const fs::path root = [] {
-    const fs::path r = dir / "approach";
-    std::string log;
-    const int status =
-        run_simcap(std::string("render ") + SIMCAP_SOURCE_DIR + "/scenes/two_people.yaml -o " +
-                       r.string() + " -q --frames 24 --set render.first_frame=150",
-                   &log);
-    EXPECT_EQ(status, 0) << log;
-    return r;
-  }();
+  static const fs::path root = render_two_people(dir, 24, 150);
   return root;
 }
 
