@@ -15,11 +15,6 @@ namespace {
 constexpr int kKinds = 9;
 constexpr std::array<int, kSegmentCount> kKindOf = {0, 1, 2, 3, 4, 5, 3, 4, 5, 6, 7, 8, 6, 7, 8};
 
-struct Component {
-  Eigen::Vector2d mean;
-  Eigen::Matrix2d inverse;
-};
-
 // Chromaticity: the share of two channels in the brightness, which shading leaves alone (a
 // thigh in the light and a calf in the shade wear the same trousers); none for dark pixels.
 std::optional<Eigen::Vector2d> chromaticity(const Eigen::Vector3d& colour, double min_sum) {
@@ -52,8 +47,9 @@ int shown_part(const PlacedSurface& surface, const SilhouetteRay& ray, double in
 // The materials the body is dressed in (shirt, skin, trousers...): OpenCV's k-means on all
 // chromaticities, with more clusters until each is compact. Clusters start from quantiles of the
 // first channel's share, so that the result does not depend on a random seed.
-std::vector<Component> materials(const std::vector<Eigen::Vector2d>& colours,
-                                 std::vector<int>& label, const AppearanceOptions& options) {
+template <typename Material>
+std::vector<Material> materials(const std::vector<Eigen::Vector2d>& colours,
+                                std::vector<int>& label, const AppearanceOptions& options) {
   const int n = static_cast<int>(colours.size());
   cv::Mat samples(n, 2, CV_32F);
   for (int i = 0; i < n; ++i) {
@@ -63,7 +59,7 @@ std::vector<Component> materials(const std::vector<Eigen::Vector2d>& colours,
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(),
             [&](int a, int b) { return colours[a](0) < colours[b](0); });
-  std::vector<Component> out;
+  std::vector<Material> out;
   const double floor2 = options.noise_floor * options.noise_floor;
   for (int k = 1; k <= options.max_materials && k <= n; ++k) {
     cv::Mat labels(n, 1, CV_32S);
@@ -118,8 +114,8 @@ AppearanceModel::AppearanceModel(const StickModel& model, const BodySurface& sur
     kind_of_sample.insert(kind_of_sample.end(), colours[k].size(), k);
   }
   std::vector<int> material_of;
-  const std::vector<Component> dress =
-      all.empty() ? std::vector<Component>{} : materials(all, material_of, options);
+  if (!all.empty()) dress_ = materials<Material>(all, material_of, options);
+  const std::vector<Material>& dress = dress_;
   // Each kind of part wears the materials that make up a fair share of its samples.
   std::vector<std::uint16_t> wearers(dress.size(), 0);
   std::uint16_t unknown = 0;  // parts whose kind has no colour model: never excluded
@@ -142,16 +138,49 @@ AppearanceModel::AppearanceModel(const StickModel& model, const BodySurface& sur
       if (count[m] >= options.min_share * n) wearers[m] |= segments;
     }
   }
+  if (!dress.empty()) foreign_.assign(table_.size(), 0);
   for (int code = 0; code < (1 << 15); ++code) {
     const auto c = chromaticity(
         Eigen::Vector3d((code >> 10) * 8 + 4, ((code >> 5) & 31) * 8 + 4, (code & 31) * 8 + 4),
         options.min_brightness);
     std::uint16_t parts = 0;
     for (size_t m = 0; c && m < dress.size(); ++m) {
-      const Eigen::Vector2d e = *c - dress[m].mean;
-      if (e.dot(dress[m].inverse * e) <= options.max_distance2) parts |= wearers[m];
+      if (dress[m].distance2(*c) <= options.max_distance2) parts |= wearers[m];
     }
     table_[code] = parts ? parts | unknown : kAllParts;
+    if (c && !dress.empty() && !parts) foreign_[code] = 1;
+  }
+}
+
+void AppearanceModel::learn_others(const std::vector<std::array<std::uint8_t, 3>>& colours,
+                                   const AppearanceOptions& options) {
+  if (dress_.empty()) return;
+  std::vector<Eigen::Vector2d> samples;
+  for (const auto& colour : colours) {
+    if (const auto c =
+            chromaticity(Eigen::Vector3d(colour[0], colour[1], colour[2]), options.min_brightness))
+      samples.push_back(*c);
+  }
+  if (static_cast<int>(samples.size()) < options.min_samples) return;
+  std::vector<int> material_of;
+  const std::vector<Material> all = materials<Material>(samples, material_of, options);
+  // Only their main materials: the gate's cut leaves a few of the person's own pixels among
+  // theirs.
+  std::vector<Material> theirs;
+  for (size_t m = 0; m < all.size(); ++m) {
+    const auto n = std::count(material_of.begin(), material_of.end(), static_cast<int>(m));
+    if (n >= options.min_share * static_cast<double>(samples.size())) theirs.push_back(all[m]);
+  }
+  for (int code = 0; code < (1 << 15); ++code) {
+    const auto c = chromaticity(
+        Eigen::Vector3d((code >> 10) * 8 + 4, ((code >> 5) & 31) * 8 + 4, (code & 31) * 8 + 4),
+        options.min_brightness);
+    if (!c) continue;
+    double own = std::numeric_limits<double>::infinity();
+    for (const Material& m : dress_) own = std::min(own, m.distance2(*c));
+    for (const Material& m : theirs) {
+      if (m.distance2(*c) < std::min(own, options.max_distance2)) foreign_[code] = 1;
+    }
   }
 }
 

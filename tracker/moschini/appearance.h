@@ -37,13 +37,36 @@ class AppearanceModel {
   // The parts (bit s = Segment s) a pixel of this colour may show; every part when the colour
   // fits none of the learned ones (a foot, a shadow).
   std::uint16_t parts(const std::array<std::uint8_t, 3>& colour) const {
-    return table_[(colour[0] >> 3) << 10 | (colour[1] >> 3) << 5 | (colour[2] >> 3)];
+    return table_[code(colour)];
+  }
+  // Learns what the other people in view wear from colours of their pixels (those the person
+  // gate dropped), so that foreign() also tells colours closer to theirs than to the person's.
+  void learn_others(const std::vector<std::array<std::uint8_t, 3>>& colours,
+                    const AppearanceOptions& options = {});
+  // Whether a pixel of this colour is someone else's: it is bright enough to say and fits none
+  // of the materials the person wears, or fits a material of the others' (learn_others) better.
+  // Never before learning.
+  bool foreign(const std::array<std::uint8_t, 3>& colour) const {
+    return !foreign_.empty() && foreign_[code(colour)];
   }
   // How many parts have a colour model.
   int learned_parts() const { return learned_; }
 
  private:
-  std::vector<std::uint16_t> table_;  // per colour quantized to 5 bits per channel
+  static int code(const std::array<std::uint8_t, 3>& colour) {
+    return (colour[0] >> 3) << 10 | (colour[1] >> 3) << 5 | (colour[2] >> 3);
+  }
+  struct Material {
+    Eigen::Vector2d mean;
+    Eigen::Matrix2d inverse;  // of the chromaticity's covariance
+    // Squared Mahalanobis distance of chromaticity c.
+    double distance2(const Eigen::Vector2d& c) const {
+      return (c - mean).dot(inverse * (c - mean));
+    }
+  };
+  std::vector<Material> dress_;        // the person's materials
+  std::vector<std::uint16_t> table_;   // per colour quantized to 5 bits per channel
+  std::vector<std::uint8_t> foreign_;  // per quantized colour, when learned
   int learned_ = 0;
 };
 

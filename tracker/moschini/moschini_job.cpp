@@ -130,7 +130,9 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
     const StickModel plain(dims, topt.joints, topt.urdf_limits);
     const StickPose start = pose_from_joints(plain, joints, source);
     Observation first = perception.observe(frames.front());
-    if (others) perception.isolate(first, place(typical_surface(dims), plain.geometry(start)));
+    std::vector<cv::Mat> dropped;  // the others' pixels, when someone else is in view
+    if (others)
+      perception.isolate(first, place(typical_surface(dims), plain.geometry(start)), &dropped);
     if (occlusion) {
       // The true pose tells at once which parts the first frame hides from a camera.
       occlusion->observe(place(typical_surface(dims), plain.geometry(start)), first.silhouettes);
@@ -139,7 +141,15 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
     dims.centerline_offset = measure_centerline_offsets(plain, start, first.points);
     const BodySurface surface =
         fit_surface(plain, start, typical_surface(dims), first.rays, first.views);
-    if (popt.colours) perception.set_appearance({plain, surface, start, first.rays});
+    if (popt.colours) {
+      // Background subtraction shows everyone: the person's colours are learned in the views
+      // where no one else touches them, and the others' from the pixels the gate dropped.
+      const bool mixed = others && method != SilhouetteMethod::gt;
+      AppearanceModel appearance(plain, surface, start,
+                                 mixed ? perception.rays_apart(first, dropped) : first.rays);
+      if (mixed) appearance.learn_others(perception.colours_under(first.frame, dropped));
+      perception.set_appearance(appearance);
+    }
     tracker.emplace(dims, surface, topt);
     tracker->start(start);
     last_body = place(surface, plain.geometry(start));

@@ -2,7 +2,9 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
+#include <opencv2/imgproc.hpp>
 
 namespace simcap::tracker {
 namespace {
@@ -32,6 +34,20 @@ Perception::Perception(const Dataset& dataset, SilhouetteMethod method,
   }
 }
 
+cv::Mat Perception::foreign_pixels(cv::Mat& silhouette, const cv::Mat& colour) const {
+  cv::Mat foreign = cv::Mat::zeros(silhouette.size(), CV_8UC1);
+  for (int v = 0; v < silhouette.rows; ++v) {
+    std::uint8_t* own = silhouette.ptr<std::uint8_t>(v);
+    std::uint8_t* out = foreign.ptr<std::uint8_t>(v);
+    const cv::Vec3b* rgb = colour.ptr<cv::Vec3b>(v);
+    for (int u = 0; u < silhouette.cols; ++u) {
+      if (own[u] && appearance_.foreign({rgb[u][0], rgb[u][1], rgb[u][2]}))
+        own[u] = 0, out[u] = 255;
+    }
+  }
+  return foreign;
+}
+
 Observation Perception::observe(int frame, bool compare_masks) const {
   using Clock = std::chrono::steady_clock;
   Observation obs;
@@ -40,11 +56,16 @@ Observation Perception::observe(int frame, bool compare_masks) const {
   std::vector<cv::Mat> silhouettes(nc), colours(nc), cover(nc);
   if (compare_masks) obs.silhouette_iou.assign(nc, 0.0);
   auto t = Clock::now();
+  const bool others = dataset_->actors().size() > 1;
+  const bool gt = silhouettes_.method() == SilhouetteMethod::gt;
+  // Background subtraction sees everyone: with others about, the pixels in colours the person
+  // does not wear are someone else's, who may hide the person there (cover) but whose rays
+  // must not pull the body.
+  const bool split = others && !gt && options_.colours && appearance_.learned_parts() > 0;
   tbb::parallel_for(0, nc, [&](int c) {
     silhouettes[c] = silhouettes_.extract(c, frame, options_.colours ? &colours[c] : nullptr);
-    if (silhouettes_.method() == SilhouetteMethod::gt && dataset_->actors().size() > 1) {
-      cover[c] = dataset_->others(c, frame);
-    }
+    if (gt && others) cover[c] = dataset_->others(c, frame);
+    if (split) cover[c] = foreign_pixels(silhouettes[c], colours[c]);
     if (compare_masks)
       obs.silhouette_iou[c] = silhouette_iou(silhouettes[c], dataset_->mask(c, frame));
   });
@@ -72,9 +93,7 @@ Observation Perception::observe(int frame, bool compare_masks) const {
   }
   obs.silhouettes_ms = ms_since(t);
   obs.silhouettes = std::move(silhouettes);
-  if (dataset_->actors().size() > 1 && silhouettes_.method() == SilhouetteMethod::gt) {
-    obs.cover = std::move(cover);
-  }
+  if (others && (gt || split)) obs.cover = std::move(cover);
   shape(obs.silhouettes, obs);
   return obs;
 }
@@ -98,22 +117,76 @@ void Perception::shape(const std::vector<cv::Mat>& given, Observation& obs) cons
   hull_.carve(silhouettes, obs.hull);
   obs.hull_ms += ms_since(t);
   t = Clock::now();
-  obs.centerline = centerline(obs.hull, options_.skeleton);
+  // With cover, the hull holds the others' volume next to the person too (the gate keeps what
+  // lies within reach), and its slices' centroids would pull the limbs into them: the
+  // centerline comes from the person's own pixels. A limb hidden behind someone loses its
+  // centerline points there but keeps the outline views and the hull's containment.
+  if (covered.empty()) {
+    obs.centerline = centerline(obs.hull, options_.skeleton);
+  } else {
+    Occupancy own;
+    hull_.carve(given, own);
+    obs.centerline = centerline(own, options_.skeleton);
+  }
   obs.points.clear();
   obs.points.reserve(obs.centerline.size());
   for (const CenterlinePoint& p : obs.centerline) obs.points.push_back(p.position);
   obs.centerline_ms += ms_since(t);
 }
 
-GateResult Perception::isolate(Observation& obs, const PlacedSurface& body) const {
+GateResult Perception::isolate(Observation& obs, const PlacedSurface& body,
+                               std::vector<cv::Mat>* dropped) const {
+  std::vector<cv::Mat> before;
+  if (dropped) {
+    for (const cv::Mat& s : obs.silhouettes) before.push_back(s.clone());
+  }
   obs.gate = gate_.restrict(obs.hull, body, obs.silhouettes, &obs.cover);
   const GateResult& result = obs.gate;
+  if (dropped) {
+    dropped->clear();
+    for (size_t c = 0; c < before.size(); ++c) dropped->push_back(before[c] & ~obs.silhouettes[c]);
+  }
   if (!result.changed) return result;
   std::erase_if(obs.rays, [&](const SilhouetteRay& r) {
     return !obs.silhouettes[r.camera].at<std::uint8_t>(r.v, r.u);
   });
   shape(obs.silhouettes, obs);
   return result;
+}
+
+std::vector<SilhouetteRay> Perception::rays_apart(const Observation& obs,
+                                                  const std::vector<cv::Mat>& dropped) const {
+  std::vector<bool> apart(obs.silhouettes.size(), true);
+  const cv::Mat near = cv::getStructuringElement(cv::MORPH_ELLIPSE, {7, 7});
+  for (size_t c = 0; c < apart.size() && c < dropped.size(); ++c) {
+    cv::Mat around;
+    cv::dilate(dropped[c], around, near);
+    apart[c] = cv::countNonZero(around & obs.silhouettes[c]) == 0;
+  }
+  if (std::find(apart.begin(), apart.end(), true) == apart.end()) return obs.rays;
+  std::vector<SilhouetteRay> rays;
+  for (const SilhouetteRay& r : obs.rays) {
+    if (apart[r.camera]) rays.push_back(r);
+  }
+  return rays;
+}
+
+std::vector<std::array<std::uint8_t, 3>> Perception::colours_under(
+    int frame, const std::vector<cv::Mat>& masks) const {
+  std::vector<std::array<std::uint8_t, 3>> out;
+  const int stride = std::max(options_.ray_stride, 1);
+  for (size_t c = 0; c < masks.size(); ++c) {
+    if (cv::countNonZero(masks[c]) == 0) continue;
+    const cv::Mat rgb = dataset_->rgb(static_cast<int>(c), frame);
+    for (int v = stride / 2; v < masks[c].rows; v += stride) {
+      for (int u = stride / 2; u < masks[c].cols; u += stride) {
+        if (!masks[c].at<std::uint8_t>(v, u)) continue;
+        const cv::Vec3b& p = rgb.at<cv::Vec3b>(v, u);
+        out.push_back({p[0], p[1], p[2]});
+      }
+    }
+  }
+  return out;
 }
 
 void Perception::widen(Observation& obs, const OcclusionMap& occlusion) const {

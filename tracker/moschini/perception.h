@@ -36,8 +36,9 @@ struct Observation {
   std::vector<SilhouetteView> views;    // per camera, when PerceptionOptions::views
   std::vector<cv::Mat> silhouettes;     // per camera, as extracted (8-bit, nonzero = person)
   // Per camera, where someone else may hide the person (the other actors' pixels of the
-  // ground-truth masks): the hull is carved and the views are built from silhouettes and
-  // cover, the rays come from the silhouettes alone. Empty when no one else is known.
+  // ground-truth masks; with background subtraction, the pixels in the others' colours): the
+  // hull is carved and the views are built from silhouettes and cover, the rays and the
+  // centerline come from the silhouettes alone. Empty when no one else is known.
   std::vector<cv::Mat> cover;
   GateResult gate;                     // what isolate() kept
   std::vector<double> silhouette_iou;  // per camera vs the dataset's masks, when asked for
@@ -57,11 +58,24 @@ class Perception {
   // Keeps the person whose body was last at `body` when the silhouettes show others too
   // (person_gate.h): silhouettes, rays, hull and centerline then hold that person alone.
   // Nothing changes when the hull holds no one else.
-  GateResult isolate(Observation& obs, const PlacedSurface& body) const;
+  // With `dropped`, each camera's silhouette pixels the gate took away (the others') go there.
+  GateResult isolate(Observation& obs, const PlacedSurface& body,
+                     std::vector<cv::Mat>* dropped = nullptr) const;
+  // The rays of `obs` from the cameras in which none of the `dropped` pixels touches what is
+  // kept (there, the person's silhouette may hold someone else in front): for learning the
+  // person's colours. All rays when every camera has someone touching the person.
+  std::vector<SilhouetteRay> rays_apart(const Observation& obs,
+                                        const std::vector<cv::Mat>& dropped) const;
+  // The colours of the frame's pixels under `masks`, on the ray grid (as SilhouetteRay::colour).
+  std::vector<std::array<std::uint8_t, 3>> colours_under(int frame,
+                                                         const std::vector<cv::Mat>& masks) const;
   // From now on, each ray lists the parts its colour may show (needs PerceptionOptions::colours).
   void set_appearance(const AppearanceModel& appearance) { appearance_ = appearance; }
 
  private:
+  // Moves the pixels of `silhouette` in colours the person does not wear (AppearanceModel::
+  // foreign) to the returned mask.
+  cv::Mat foreign_pixels(cv::Mat& silhouette, const cv::Mat& colour) const;
   // Views, hull and centerline of `silhouettes` (with obs.cover), timed into `obs`.
   void shape(const std::vector<cv::Mat>& silhouettes, Observation& obs) const;
   const Dataset* dataset_;

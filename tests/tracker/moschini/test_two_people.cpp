@@ -19,20 +19,33 @@ namespace fs = std::filesystem;
 using testing::run_simcap;
 using testing::TempDir;
 
+// `frames` frames of the scene from the clip's frame `first` (the scene's frame 0 is 120),
+// rendered into `dir`.
+fs::path render_two_people(const TempDir& dir, int frames, int first) {
+  const fs::path r = dir / "two";
+  std::string log;
+  const int status =
+      run_simcap(std::string("render ") + SIMCAP_SOURCE_DIR + "/scenes/two_people.yaml -o " +
+                     r.string() + " -q --frames " + std::to_string(frames) +
+                     " --set render.first_frame=" + std::to_string(first),
+                 &log);
+  EXPECT_EQ(status, 0) << log;
+  return r;
+}
+
 // Frames 40-53 of the scene: actor1 walks past 0.45 m in front of actor0 (frame 45) and hides
 // it from cam00.
 const fs::path& crossing() {
   static TempDir dir;
-  static const fs::path root = [] {
-    const fs::path r = dir / "two";
-    std::string log;
-    const int status =
-        run_simcap(std::string("render ") + SIMCAP_SOURCE_DIR + "/scenes/two_people.yaml -o " +
-                       r.string() + " -q --frames 14 --set render.first_frame=160",
-                   &log);
-    EXPECT_EQ(status, 0) << log;
-    return r;
-  }();
+  static const fs::path root = render_two_people(dir, 14, 160);
+  return root;
+}
+
+// Frames 30-53: actor1 comes from the side, passes 0.45 m in front of actor0 (frame 45) and
+// turns away; the track starts before they meet.
+const fs::path& approach() {
+  static TempDir dir;
+  static const fs::path root = render_two_people(dir, 24, 150);
   return root;
 }
 
@@ -124,6 +137,35 @@ TEST(TwoPeople, TheTrackRecordsItsActorAndValidateScoresIt) {
   EXPECT_LT(own, 100);  // 75 mm: actor1 is followed, though the crossing costs it
   // It is actor1's track: against actor0 it is metres off.
   EXPECT_GT(mean_error_mm(tracker::Dataset(crossing()).ground_truth("test"), track), 300);
+}
+
+// Background subtraction sees both people as one foreground; the person gate and the colours
+// learned on the first frame (the others' pixels become cover) keep the track on actor0.
+TEST(TwoPeople, BackgroundSubtractionKeepsTheTrackOnItsActorThroughTheCrossing) {
+  TempDir dir;
+  std::string log;
+  ASSERT_EQ(run_simcap("track " + approach().string() + " -o " + (dir / "t").string() +
+                           " --silhouettes bgsub --quiet",
+                       &log),
+            0)
+      << log;
+  const JointTrack track = read_joint_track(dir / "t" / "joints3d.csv");
+  const JointTrack own = tracker::Dataset(approach()).ground_truth("test");
+  const JointTrack other = tracker::Dataset(approach(), "actor1").ground_truth("test");
+  ASSERT_EQ(track.frames.size(), 24u);
+  const int root = track.joint_index("humanoid_root");
+  ASSERT_GE(root, 0);
+  for (size_t f = 0; f < track.frames.size(); ++f) {
+    const Eigen::Vector3d& r = track.positions[f][root];
+    const double mine = (r - own.positions[f][own.joint_index("humanoid_root")]).norm();
+    const double theirs = (r - other.positions[f][other.joint_index("humanoid_root")]).norm();
+    // The root stays on actor0 (at most 0.31 m off, while actor1's is 0.5 m away and more);
+    // limbs still drift towards actor1 while the two are close (MOSCHINI.md).
+    EXPECT_LT(mine, 0.4) << "frame " << track.frames[f];
+    EXPECT_LT(mine, theirs) << "frame " << track.frames[f];
+  }
+  // Once the other person is near, nothing of the track is on actor1.
+  EXPECT_GT(mean_error_mm(other, track), 2 * mean_error_mm(own, track));
 }
 
 }  // namespace
