@@ -7,8 +7,8 @@
 
 #include "core/atomic_file.h"
 #include "core/dataset_actors.h"
-#include "validate/report_html.h"
 #include "core/svg_plot.h"
+#include "validate/report_html.h"
 
 namespace simcap {
 namespace {
