@@ -34,7 +34,11 @@ for target in "$@"; do
   # OpenImageIO start at 2.2 GiB under ASan (its plugins load, the DICOM dictionary among them).
   # The frame-pointer unwinder (ASan's default) records every allocation's stack: the slow one
   # would make every harness 3 to 5 times slower, and lsan.supp matches clang's stacks without it.
-  TMPDIR="$scratch" LSAN_OPTIONS=suppressions=$fuzz/lsan.supp nice -n 19 "$harness" "${dict[@]}" -max_total_time="$seconds" -timeout=10 \
+  # Niced in a session of its own: where the kernel groups processes by session (autogroup), a
+  # nice value only ranks a process within its session, and a niced fuzzer would still take a
+  # whole core from the builds of other sessions; the session's own group is niced too.
+  TMPDIR="$scratch" LSAN_OPTIONS=suppressions=$fuzz/lsan.supp setsid -w bash -c \
+    'echo 19 >/proc/self/autogroup 2>/dev/null; exec nice -n 19 "$@"' fuzz "$harness" "${dict[@]}" -max_total_time="$seconds" -timeout=10 \
     -rss_limit_mb=4096 -malloc_limit_mb=2048 -print_final_stats=1 \
     -artifact_prefix="$findings/" "$corpus" "$fuzz/corpus/$target" "$fuzz/regressions/$target" \
     >"$log" 2>&1 || true
