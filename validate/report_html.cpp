@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "core/svg_plot.h"
 
@@ -47,19 +48,29 @@ std::string summary_table(const Evaluation& ev) {
   return s + "</table>\n";
 }
 
-std::string per_frame_plot(const Evaluation& ev) {
+// A plot in mm against the frame number of one value per frame for each of `series`.
+LinePlot frame_plot(
+    const Evaluation& ev, const char* title,
+    const std::vector<std::pair<const char*, double (*)(const FrameScore&)>>& series) {
   LinePlot plot;
-  plot.title = "Error per frame";
+  plot.title = title;
   plot.x_label = "frame";
   plot.y_label = "mm";
-  PlotSeries mpjpe{"MPJPE", {}, {}}, pa{"PA-MPJPE", {}, {}};
-  for (const auto& f : ev.per_frame) {
-    mpjpe.x.push_back(f.frame);
-    mpjpe.y.push_back(f.mpjpe_mm);
-    pa.x.push_back(f.frame);
-    pa.y.push_back(f.pa_mpjpe_mm);
+  for (const auto& [name, value] : series) {
+    PlotSeries s{name, {}, {}};
+    for (const auto& f : ev.per_frame) {
+      s.x.push_back(f.frame);
+      s.y.push_back(value(f));
+    }
+    plot.series.push_back(std::move(s));
   }
-  plot.series = {mpjpe, pa};
+  return plot;
+}
+
+std::string per_frame_plot(const Evaluation& ev) {
+  LinePlot plot = frame_plot(ev, "Error per frame",
+                             {{"MPJPE", [](const FrameScore& f) { return f.mpjpe_mm; }},
+                              {"PA-MPJPE", [](const FrameScore& f) { return f.pa_mpjpe_mm; }}});
   plot.reference_y = ev.failures.threshold_mm;
   plot.reference_label = "failure threshold";
   return line_plot_svg(plot);
@@ -91,19 +102,10 @@ std::string camera_ray_section(const Evaluation& ev) {
       "component across it (the image plane). Mean over all joints and frames: along " +
       fmt("%.1f", ev.ray->along_mm) + " mm, across " + fmt("%.1f", ev.ray->across_mm) +
       " mm.</p>\n";
-  LinePlot over_time;
-  over_time.title = "Error along and across the camera ray per frame";
-  over_time.x_label = "frame";
-  over_time.y_label = "mm";
-  PlotSeries along{"along the ray (depth)", {}, {}}, across{"across the ray (image)", {}, {}};
-  for (const auto& f : ev.per_frame) {
-    along.x.push_back(f.frame);
-    along.y.push_back(f.ray->along_mm);
-    across.x.push_back(f.frame);
-    across.y.push_back(f.ray->across_mm);
-  }
-  over_time.series = {along, across};
-  s += line_plot_svg(over_time);
+  s += line_plot_svg(frame_plot(
+      ev, "Error along and across the camera ray per frame",
+      {{"along the ray (depth)", [](const FrameScore& f) { return f.ray->along_mm; }},
+       {"across the ray (image)", [](const FrameScore& f) { return f.ray->across_mm; }}}));
   s += "<table>\n" + row({"joint", "along the ray mm", "across the ray mm"}, "th");
   for (const auto& j : ev.per_joint) {
     s += row({j.joint, fmt("%.1f", j.ray->along_mm), fmt("%.1f", j.ray->across_mm)});
