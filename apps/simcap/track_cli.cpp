@@ -12,7 +12,7 @@ namespace simcap::cli {
 namespace {
 
 // Sweep keys and the options they set (sweep files name the voxel and noise with their unit).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 30> kSweepKeys{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 31> kSweepKeys{{
     {"method", "--method"},
     {"actor", "--actor"},
     {"silhouettes", "--silhouettes"},
@@ -37,6 +37,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 30> kSweepKe
     {"diffusion", "--diffusion"},
     {"feet_sigma", "--feet-sigma"},
     {"top_sigma", "--top-sigma"},
+    {"mirror_groups", "--mirror-groups"},
     {"floor", "--floor"},
     {"smooth", "--smooth"},
     {"cutoff_hz", "--cutoff"},
@@ -235,6 +236,11 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
                   "monocular: spread in working pixels of the top prior (the body's highest "
                   "extent against the silhouette's), 0: off")
       ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
+  cmd->add_option("--mirror-groups", m.filter.mirror_groups,
+                  "monocular: how many particle groups, largest first, have their best pose "
+                  "tested reflected front to back across the camera ray (full body), 0: off")
+      ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   TriangulateOptions& t = o.triangulate;
   cmd->add_option("--detections", t.detections,

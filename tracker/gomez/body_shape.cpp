@@ -64,6 +64,7 @@ BodyShape make_body_shape(const Skeleton& s, BodyKind kind, const ShapeScales& s
   add("skullbase", {head_x.x(), head_x.y() + 0.035 * H, head_x.z() + 0.01 * H},
       {head_x.x(), c("skull_tip").y() - 0.052 * H, head_x.z() + 0.006 * H}, 0.05, 0.052,
       Part::head);
+  shape.capsules.back().front = Eigen::Vector3d::UnitZ();  // the neutral body faces +Z
   for (const char* side : {"l_", "r_"}) {
     const std::string p = side;
     const Part arm = p == "l_" ? Part::left_arm : Part::right_arm;

@@ -22,6 +22,11 @@ struct Capsule {
   double rb = 0;      // radius at b
   Part part = Part::torso;
   int mirror = -1;  // the same capsule on the other side, -1 on the midline
+  // The head's face direction in the joint's frame (zero: none). The surface facing away from
+  // it draws the last cell, the crown's, at every height: from behind a head shows its hair,
+  // from the front its face under the hairline -- the cue that tells a body facing the camera
+  // from one turned away, whose outlines match.
+  Eigen::Vector3d front = Eigen::Vector3d::Zero();
 };
 
 struct BodyShape {

@@ -36,6 +36,10 @@ void render_labels(const BodyShape& shape, const std::vector<Eigen::Isometry3d>&
     const double inv_length2 = length2 > 1e-12 ? 1.0 / length2 : 0.0;
     const double dr = rb - ra, dz = pb.z() - pa.z(), dm = c.rb - c.ra;
     const std::uint8_t first_cell = static_cast<std::uint8_t>(ci * kCellsPerCapsule);
+    // The face's direction in camera coordinates; a pixel's outward normal there is about
+    // (e / r, -bulge) (across the sight line, then towards the camera).
+    const bool faced = c.front.squaredNorm() > 0;
+    const Eigen::Vector3d front = cam.R * (g.linear() * c.front);
     bool drew = false;
     for (int v = v_lo; v < v_hi; ++v) {
       const double py = v - a.y();
@@ -52,8 +56,11 @@ void render_labels(const BodyShape& shape, const std::vector<Eigen::Isometry3d>&
         const size_t i = static_cast<size_t>(v) * W + u;
         if (z >= out.depth[i]) continue;
         out.depth[i] = z;
+        const bool back = faced && (ex * front.x() + ey * front.y()) / r < bulge * front.z();
         out.cell[i] = static_cast<std::uint8_t>(
-            first_cell + std::min(kCellsPerCapsule - 1, static_cast<int>(t * kCellsPerCapsule)));
+            first_cell +
+            (back ? kCellsPerCapsule - 1
+                  : std::min(kCellsPerCapsule - 1, static_cast<int>(t * kCellsPerCapsule))));
         drew = true;
       }
     }

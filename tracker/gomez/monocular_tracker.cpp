@@ -2,6 +2,8 @@
 #include "tracker/gomez/monocular_tracker.h"
 
 #include <chrono>
+#include <cmath>
+#include <numbers>
 
 #include "models/pose.h"
 #include "tracker/common/mask_box.h"
@@ -74,7 +76,13 @@ TrackedFrame MonocularTracker::track(const cv::Mat& image, const cv::Mat& silhou
   }
   out.search_ms = ms_since(t);
   estimate_ = out.estimate;
-  if (output_.size() == 0 || !(options_.smoothing > 0)) {
+  // A heading that jumped by more than a quarter turn (the filter took a reflection, whose left
+  // and right angles are swapped) restarts the smoothing: averaging across it would blend the
+  // two sides' angles.
+  const int turn = body_->dofs.find("root_turn");
+  const bool jumped = turn >= 0 && output_.size() > 0 &&
+                      std::abs(out.estimate[turn] - output_[turn]) > std::numbers::pi / 2;
+  if (output_.size() == 0 || !(options_.smoothing > 0) || jumped) {
     output_ = out.estimate;
   } else {
     const BodyDofs& dofs = body_->dofs;

@@ -46,7 +46,11 @@ struct ParticleFilter::Rng {
 
 ParticleFilter::ParticleFilter(const PoseScorer& scorer, const ArmKinematics* arms,
                                const FilterOptions& options)
-    : scorer_(&scorer), arms_(arms), options_(options) {}
+    : scorer_(&scorer),
+      arms_(arms),
+      mirror_(scorer.dofs()),
+      mirror_tells_(tells_front_from_back(scorer.shape(), scorer.cell_class())),
+      options_(options) {}
 
 void ParticleFilter::reset(const State& x0, const FrameCues& cues) {
   const Energy e = scorer_->energy_of(x0, cues);
@@ -249,29 +253,45 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
     out.simplex_groups += g.simplex;
   }
 
-  // Kinematic flipping of the best particle of the largest groups.
-  if (options_.h4_flipping && arms_ && options_.flip_groups > 0) {
+  // Kinematic flipping (H4) and the front/back reflection of the best particle of the largest
+  // groups.
+  const bool flip = options_.h4_flipping && arms_ && options_.flip_groups > 0;
+  const bool mirror = mirror_.available() && mirror_tells_ && options_.mirror_groups > 0;
+  if (flip || mirror) {
     std::vector<int> by_size(groups.size());
     std::iota(by_size.begin(), by_size.end(), 0);
     std::stable_sort(by_size.begin(), by_size.end(),
                      [&](int a, int b) { return groups[a].x.size() > groups[b].x.size(); });
-    std::vector<State> flipped;
-    const Eigen::Vector3d centre = current.view.camera->centre();
-    for (int k = 0; k < std::min<int>(options_.flip_groups, static_cast<int>(by_size.size()));
-         ++k) {
+    const auto group_best = [&](int k) -> const State& {
       const Group& g = groups[by_size[k]];
-      const auto best =
-          std::min_element(g.e.begin(), g.e.end(),
-                           [](const Energy& a, const Energy& b) { return a.total() < b.total(); }) -
-          g.e.begin();
-      for (State& y : arms_->flips(g.x[best], centre)) flipped.push_back(std::move(y));
+      return g.x[std::min_element(
+                     g.e.begin(), g.e.end(),
+                     [](const Energy& a, const Energy& b) { return a.total() < b.total(); }) -
+                 g.e.begin()];
+    };
+    const int G = static_cast<int>(by_size.size());
+    std::vector<State> tested;
+    const Eigen::Vector3d centre = current.view.camera->centre();
+    for (int k = 0; flip && k < std::min(options_.flip_groups, G); ++k) {
+      for (State& y : arms_->flips(group_best(k), centre)) tested.push_back(std::move(y));
     }
-    std::vector<Energy> fe(flipped.size());
-    tbb::parallel_for(size_t{0}, flipped.size(), [&](size_t i) { fe[i] = energy_of(flipped[i]); });
-    out.flips = static_cast<int>(flipped.size());
-    out.evaluations += out.flips;
-    pool.insert(pool.end(), flipped.begin(), flipped.end());
-    pool_e.insert(pool_e.end(), fe.begin(), fe.end());
+    out.flips = static_cast<int>(tested.size());
+    for (int k = 0; mirror && k < std::min(options_.mirror_groups, G); ++k) {
+      tested.push_back(mirror_.reflect(group_best(k), centre));
+    }
+    out.mirrors = static_cast<int>(tested.size()) - out.flips;
+    std::vector<Energy> te(tested.size());
+    tbb::parallel_for(size_t{0}, tested.size(), [&](size_t i) { te[i] = energy_of(tested[i]); });
+    out.evaluations += static_cast<int>(tested.size());
+    // A reflection joins only when it beats every particle: one close behind would draw children
+    // away from the mode the filter follows into a second one the costs cannot tell apart.
+    double lowest_pool = INFINITY;
+    for (const Energy& e : pool_e) lowest_pool = std::min(lowest_pool, e.total());
+    for (size_t i = 0; i < tested.size(); ++i) {
+      if (static_cast<int>(i) >= out.flips && !(te[i].total() < lowest_pool)) continue;
+      pool.push_back(std::move(tested[i]));
+      pool_e.push_back(te[i]);
+    }
   }
 
   // The N best survive (the thesis drops as many of the worst as flips were added).

@@ -3,7 +3,8 @@
 // weight-proportional resampling with elitism, H2 hierarchical partitioned diffusion of only the
 // parts whose region overlap dropped, H3 groups of at least n + 1 children turned into a
 // Nelder-Mead simplex, H4 kinematic flipping of the arms about the camera rays, H5 arms diffused
-// as wrist positions in camera coordinates plus the elbow's swivel angle.
+// as wrist positions in camera coordinates plus the elbow's swivel angle; and simcap's addition
+// for a walking body, its reflection across the camera ray (front/back) tested as H4 tests flips.
 #pragma once
 
 #include <Eigen/Core>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "tracker/gomez/arm_kinematics.h"
+#include "tracker/gomez/body_mirror.h"
 #include "tracker/gomez/pose_scorer.h"
 
 namespace simcap::tracker::gomez {
@@ -38,6 +40,11 @@ struct FilterOptions {
   double simplex_region_share = 0.5;
   // H4: how many groups, largest first, have their best particle flipped.
   int flip_groups = 2;
+  // The front/back ambiguity of a silhouette (simcap's addition): how many groups, largest first,
+  // have their best particle reflected through the vertical plane across the camera ray
+  // (BodyMirror::reflect), joining the pool only when it beats every particle, and only on a
+  // body whose colours tell front from back (tells_front_from_back); 0 is off.
+  int mirror_groups = 1;
   std::uint64_t seed = 1;
 };
 
@@ -49,7 +56,8 @@ struct FilterStep {
   int evaluations = 0;
   int groups = 0;                        // parents with children
   int simplex_groups = 0;                // of which refined by Nelder-Mead (H3)
-  int flips = 0;                         // kinematic flips kept (H4)
+  int flips = 0;                         // kinematic flips tested (H4)
+  int mirrors = 0;                       // reflections tested
   std::array<bool, kPartCount> moved{};  // H2's motion detection
 };
 
@@ -82,6 +90,8 @@ class ParticleFilter {
 
   const PoseScorer* scorer_;
   const ArmKinematics* arms_;
+  BodyMirror mirror_;
+  bool mirror_tells_ = false;  // tells_front_from_back of the scorer's body
   FilterOptions options_;
   std::vector<State> particles_;
   std::vector<double> energies_;

@@ -37,6 +37,18 @@ RegionModel region_model(const BodyShape& shape, const std::vector<std::uint8_t>
   return m;
 }
 
+bool tells_front_from_back(const BodyShape& shape, const std::vector<std::uint8_t>& cell_class) {
+  for (size_t ci = 0; ci < shape.capsules.size(); ++ci) {
+    if (shape.capsules[ci].front.squaredNorm() == 0) continue;
+    const std::uint8_t* cells = &cell_class[ci * kCellsPerCapsule];
+    std::array<int, kMaxColourClasses + 1> votes{};
+    for (int k = 0; k < kCellsPerCapsule; ++k) ++votes[cells[k]];
+    const int most = static_cast<int>(std::max_element(votes.begin(), votes.end()) - votes.begin());
+    if (cells[kCellsPerCapsule - 1] != most) return true;
+  }
+  return false;
+}
+
 double region_cost(const LabelImage& labels, const RegionModel& model, const FrameCues& cues,
                    RegionCombine combine) {
   // Per class: image pixels (A), model pixels (B), both; index 0 holds the head class's share

@@ -75,6 +75,11 @@ struct RegionModel {
 RegionModel region_model(const BodyShape& shape, const std::vector<std::uint8_t>& cell_class,
                          bool split_head);
 
+// Whether the colour cells can tell a body facing the camera from one turned away: a capsule
+// with a face (Capsule::front) whose crown cell has another class than most of its cells (hair
+// above a face). Otherwise the costs see a body and its front/back reflection alike.
+bool tells_front_from_back(const BodyShape& shape, const std::vector<std::uint8_t>& cell_class);
+
 // The region cost of a rendered image. Only the classes some cell has are compared (the upper
 // body has no trousers); the head class, if any, counts as two: under the model's head and
 // elsewhere.

@@ -1,7 +1,8 @@
 // The render-and-compare pieces against independent computations: the capsule rasterizer against
-// the analytic disc a sphere projects to, the region cost against hand-counted pixels, and the
-// chamfer cost against a brute-force nearest-edge search, the feet and top priors against
-// hand-computed offsets and the silhouette's rasterized extent.
+// the analytic disc a sphere projects to, its face/crown split against ray-sphere normals, the
+// region cost against hand-counted pixels, and the chamfer cost against a brute-force nearest-edge
+// search, the feet and top priors against hand-computed offsets and the silhouette's rasterized
+// extent.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -77,6 +78,62 @@ TEST(LabelRenderer, TheNearerCapsuleHidesTheFartherAndCellsRunAlongTheAxis) {
   // Along the horizontal capsule the cells count from a (x = -0.3) to b.
   EXPECT_EQ(cell_at(Eigen::Vector3d(-0.28, 1, 0)), 0);
   EXPECT_EQ(cell_at(Eigen::Vector3d(0.28, 1, 0)), kCellsPerCapsule - 1);
+}
+
+TEST(LabelRenderer, AHeadTurnedAwayShowsItsCrownsCell) {
+  const Camera cam = test_camera();
+  const Eigen::Vector3d centre(0, 1, 0);
+  const double r = 0.12;
+  for (const Eigen::Vector3d& front : {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(0, 0, -1),
+                                       Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(-0.6, 0, 0.8)}) {
+    BodyShape shape = one_capsule(centre, centre, r, r);
+    shape.capsules[0].front = front;
+    const View view{&cam, 0, 0, 1, cam.width, cam.height};
+    LabelImage labels;
+    render_labels(shape, kIdentity, view, labels);
+    // Each drawn pixel against the sphere point its sight line meets first (ray-sphere in the
+    // world): it shows the crown's cell exactly when that point's normal faces away from the
+    // face, away from the terminator where the renderer's approximate normal may differ.
+    int checked = 0, back = 0;
+    for (int v = labels.v0; v < labels.v1; ++v) {
+      for (int u = labels.u0; u < labels.u1; ++u) {
+        if (labels.at(u, v) == kNoCell) continue;
+        const Eigen::Vector3d o = cam.centre(), d = cam.unproject(Eigen::Vector2d(u, v));
+        const double b = d.dot(centre - o), disc = b * b - ((centre - o).squaredNorm() - r * r);
+        if (disc < 0) continue;
+        const Eigen::Vector3d normal = (o + (b - std::sqrt(disc)) * d - centre) / r;
+        const double facing = normal.dot(front);
+        if (std::abs(facing) < 0.2) continue;
+        ++checked;
+        back += facing < 0;
+        EXPECT_EQ(labels.at(u, v), facing < 0 ? kCellsPerCapsule - 1 : 0)
+            << "pixel " << u << "," << v << " facing " << facing;
+      }
+    }
+    EXPECT_GT(checked, 250);
+    // Facing the camera: no crown; turned away: all crown; sideways: about half.
+    if (front.z() > 0.99) {
+      EXPECT_EQ(back, 0);
+    } else if (front.z() < -0.99) {
+      EXPECT_EQ(back, checked);
+    } else if (std::abs(front.x()) > 0.99) {
+      EXPECT_NEAR(back, checked / 2.0, 0.1 * checked);
+    }
+  }
+}
+
+TEST(RegionModel, TellsFrontFromBackWhenTheCrownDiffersFromTheFace) {
+  BodyShape shape = one_capsule(Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, 1.2, 0), 0.1, 0.1);
+  shape.capsules.push_back(shape.capsules[0]);
+  std::vector<std::uint8_t> classes(2 * kCellsPerCapsule, 1);
+  // No capsule has a face: nothing to tell by.
+  classes[kCellsPerCapsule - 1] = 2;
+  EXPECT_FALSE(tells_front_from_back(shape, classes));
+  shape.capsules[0].front = Eigen::Vector3d::UnitZ();
+  EXPECT_TRUE(tells_front_from_back(shape, classes));  // hair (2) above a face (1)
+  classes[kCellsPerCapsule - 1] = 1;
+  classes[kCellsPerCapsule + kCellsPerCapsule - 1] = 2;  // the other capsule's crown
+  EXPECT_FALSE(tells_front_from_back(shape, classes));   // a bald head: skin all round
 }
 
 // A 6 x 4 working image with hand-made model cells and image classes.
