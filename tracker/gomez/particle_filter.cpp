@@ -279,7 +279,6 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
     for (int k = 0; mirror && k < std::min(options_.mirror_groups, G); ++k) {
       tested.push_back(mirror_.reflect(group_best(k), centre));
     }
-    out.mirrors = static_cast<int>(tested.size()) - out.flips;
     std::vector<Energy> te(tested.size());
     tbb::parallel_for(size_t{0}, tested.size(), [&](size_t i) { te[i] = energy_of(tested[i]); });
     out.evaluations += static_cast<int>(tested.size());
@@ -288,7 +287,10 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
     double lowest_pool = INFINITY;
     for (const Energy& e : pool_e) lowest_pool = std::min(lowest_pool, e.total());
     for (size_t i = 0; i < tested.size(); ++i) {
-      if (static_cast<int>(i) >= out.flips && !(te[i].total() < lowest_pool)) continue;
+      if (static_cast<int>(i) >= out.flips) {
+        if (!(te[i].total() < lowest_pool)) continue;
+        ++out.reflected;
+      }
       pool.push_back(std::move(tested[i]));
       pool_e.push_back(te[i]);
     }

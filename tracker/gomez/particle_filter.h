@@ -57,7 +57,7 @@ struct FilterStep {
   int groups = 0;                        // parents with children
   int simplex_groups = 0;                // of which refined by Nelder-Mead (H3)
   int flips = 0;                         // kinematic flips tested (H4)
-  int mirrors = 0;                       // reflections tested
+  int reflected = 0;                     // front/back reflections that joined (beat every particle)
   std::array<bool, kPartCount> moved{};  // H2's motion detection
 };
 
