@@ -138,7 +138,7 @@ AppearanceModel::AppearanceModel(const StickModel& model, const BodySurface& sur
       if (count[m] >= options.min_share * n) wearers[m] |= segments;
     }
   }
-  if (!dress.empty()) foreign_.assign(table_.size(), 0);
+  if (!dress.empty()) foreign_.assign(table_.size(), 0), distinct_.assign(table_.size(), 0);
   for (int code = 0; code < (1 << 15); ++code) {
     const auto c = chromaticity(
         Eigen::Vector3d((code >> 10) * 8 + 4, ((code >> 5) & 31) * 8 + 4, (code & 31) * 8 + 4),
@@ -149,6 +149,7 @@ AppearanceModel::AppearanceModel(const StickModel& model, const BodySurface& sur
     }
     table_[code] = parts ? parts | unknown : kAllParts;
     if (c && !dress.empty() && !parts) foreign_[code] = 1;
+    if (parts) distinct_[code] = 1;
   }
 }
 
@@ -180,6 +181,7 @@ void AppearanceModel::learn_others(const std::vector<std::array<std::uint8_t, 3>
     for (const Material& m : dress_) own = std::min(own, m.distance2(*c));
     for (const Material& m : theirs) {
       if (m.distance2(*c) < std::min(own, options.max_distance2)) foreign_[code] = 1;
+      if (m.distance2(*c) <= options.max_distance2) distinct_[code] = 0;
     }
   }
 }

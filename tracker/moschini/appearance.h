@@ -49,6 +49,11 @@ class AppearanceModel {
   bool foreign(const std::array<std::uint8_t, 3>& colour) const {
     return !foreign_.empty() && foreign_[code(colour)];
   }
+  // Whether a pixel of this colour is the person's alone: it fits a material the person wears
+  // and none of the others' (learn_others). Never before learning.
+  bool distinct(const std::array<std::uint8_t, 3>& colour) const {
+    return !distinct_.empty() && distinct_[code(colour)];
+  }
   // How many parts have a colour model.
   int learned_parts() const { return learned_; }
 
@@ -64,9 +69,10 @@ class AppearanceModel {
       return (c - mean).dot(inverse * (c - mean));
     }
   };
-  std::vector<Material> dress_;        // the person's materials
-  std::vector<std::uint16_t> table_;   // per colour quantized to 5 bits per channel
-  std::vector<std::uint8_t> foreign_;  // per quantized colour, when learned
+  std::vector<Material> dress_;         // the person's materials
+  std::vector<std::uint16_t> table_;    // per colour quantized to 5 bits per channel
+  std::vector<std::uint8_t> foreign_;   // per quantized colour, when learned
+  std::vector<std::uint8_t> distinct_;  // per quantized colour, when learned
   int learned_ = 0;
 };
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <opencv2/core/utility.hpp>
 #include <optional>
 
@@ -65,6 +66,8 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
   popt.hull.voxel_m = options.voxel_m;
   popt.hull.volume = working_volume(ds);
   popt.colours = options.appearance;
+  // Silhouettes that show everyone: the others' pixels next to the person become cover.
+  popt.gate.others_to_cover = method != SilhouetteMethod::gt;
   Perception perception(ds, method, popt);
   std::vector<int> frames = ds.frames(perception.silhouettes().image_kind());
   if (popt.colours && perception.silhouettes().image_kind() != "rgb") {
@@ -112,6 +115,9 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
   // (jumps 32.8 -> 68.2 mm on stress/motions.yaml).
   const bool others = ds.actors().size() > 1;
   std::optional<PlacedSurface> last_body;
+  // Where the others were, in the gate's voxels (GateResult::others), when the silhouettes
+  // show them.
+  std::vector<Eigen::Vector3d> others_before;
   // Where scene objects hide the person, learned as tracking goes (occlusion_map.h).
   std::optional<OcclusionMap> occlusion;
   if (options.occlusion) {
@@ -131,8 +137,10 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
     const StickPose start = pose_from_joints(plain, joints, source);
     Observation first = perception.observe(frames.front());
     std::vector<cv::Mat> dropped;  // the others' pixels, when someone else is in view
-    if (others)
+    if (others) {
       perception.isolate(first, place(typical_surface(dims), plain.geometry(start)), &dropped);
+      others_before = first.gate.others;
+    }
     if (occlusion) {
       // The true pose tells at once which parts the first frame hides from a camera.
       occlusion->observe(place(typical_surface(dims), plain.geometry(start)), first.silhouettes);
@@ -209,7 +217,10 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
                      tracker->start(pose_from_joints(
                          tracker->model(), joints_at(*truth, obs->frame, source), source));
                    }
-                   if (others) perception.isolate(*obs, *last_body);
+                   if (others) {
+                     perception.isolate(*obs, *last_body, nullptr, &others_before);
+                     others_before = std::move(obs->gate.others);
+                   }
                    if (occlusion) perception.widen(*obs, *occlusion);
                    const TrackStep step = tracker->step(*obs);
                    last_body = place(tracker->surface(), tracker->model().geometry(step.pose));

@@ -34,15 +34,22 @@ Perception::Perception(const Dataset& dataset, SilhouetteMethod method,
   }
 }
 
-cv::Mat Perception::foreign_pixels(cv::Mat& silhouette, const cv::Mat& colour) const {
+cv::Mat Perception::foreign_pixels(cv::Mat& silhouette, const cv::Mat& colour,
+                                   cv::Mat& distinct) const {
   cv::Mat foreign = cv::Mat::zeros(silhouette.size(), CV_8UC1);
+  distinct = cv::Mat::zeros(silhouette.size(), CV_8UC1);
   for (int v = 0; v < silhouette.rows; ++v) {
     std::uint8_t* own = silhouette.ptr<std::uint8_t>(v);
     std::uint8_t* out = foreign.ptr<std::uint8_t>(v);
+    std::uint8_t* alone = distinct.ptr<std::uint8_t>(v);
     const cv::Vec3b* rgb = colour.ptr<cv::Vec3b>(v);
     for (int u = 0; u < silhouette.cols; ++u) {
-      if (own[u] && appearance_.foreign({rgb[u][0], rgb[u][1], rgb[u][2]}))
+      if (!own[u]) continue;
+      const std::array<std::uint8_t, 3> c{rgb[u][0], rgb[u][1], rgb[u][2]};
+      if (appearance_.foreign(c))
         own[u] = 0, out[u] = 255;
+      else if (appearance_.distinct(c))
+        alone[u] = 255;
     }
   }
   return foreign;
@@ -53,7 +60,7 @@ Observation Perception::observe(int frame, bool compare_masks) const {
   Observation obs;
   obs.frame = frame;
   const int nc = dataset_->camera_count();
-  std::vector<cv::Mat> silhouettes(nc), colours(nc), cover(nc);
+  std::vector<cv::Mat> silhouettes(nc), colours(nc), cover(nc), distinct(nc);
   if (compare_masks) obs.silhouette_iou.assign(nc, 0.0);
   auto t = Clock::now();
   const bool others = dataset_->actors().size() > 1;
@@ -65,7 +72,7 @@ Observation Perception::observe(int frame, bool compare_masks) const {
   tbb::parallel_for(0, nc, [&](int c) {
     silhouettes[c] = silhouettes_.extract(c, frame, options_.colours ? &colours[c] : nullptr);
     if (gt && others) cover[c] = dataset_->others(c, frame);
-    if (split) cover[c] = foreign_pixels(silhouettes[c], colours[c]);
+    if (split) cover[c] = foreign_pixels(silhouettes[c], colours[c], distinct[c]);
     if (compare_masks)
       obs.silhouette_iou[c] = silhouette_iou(silhouettes[c], dataset_->mask(c, frame));
   });
@@ -94,6 +101,7 @@ Observation Perception::observe(int frame, bool compare_masks) const {
   obs.silhouettes_ms = ms_since(t);
   obs.silhouettes = std::move(silhouettes);
   if (others && (gt || split)) obs.cover = std::move(cover);
+  if (split) obs.distinct = std::move(distinct);
   shape(obs.silhouettes, obs);
   return obs;
 }
@@ -135,12 +143,14 @@ void Perception::shape(const std::vector<cv::Mat>& given, Observation& obs) cons
 }
 
 GateResult Perception::isolate(Observation& obs, const PlacedSurface& body,
-                               std::vector<cv::Mat>* dropped) const {
+                               std::vector<cv::Mat>* dropped,
+                               const std::vector<Eigen::Vector3d>* others_before) const {
   std::vector<cv::Mat> before;
   if (dropped) {
     for (const cv::Mat& s : obs.silhouettes) before.push_back(s.clone());
   }
-  obs.gate = gate_.restrict(obs.hull, body, obs.silhouettes, &obs.cover);
+  obs.gate =
+      gate_.restrict(obs.hull, body, obs.silhouettes, &obs.cover, &obs.distinct, others_before);
   const GateResult& result = obs.gate;
   if (dropped) {
     dropped->clear();

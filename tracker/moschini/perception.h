@@ -40,6 +40,10 @@ struct Observation {
   // hull is carved and the views are built from silhouettes and cover, the rays and the
   // centerline come from the silhouettes alone. Empty when no one else is known.
   std::vector<cv::Mat> cover;
+  // Per camera, the silhouette pixels in colours the person alone wears (AppearanceModel::
+  // distinct; with background subtraction, others about and a learned appearance): the gate
+  // leaves them to the person. Empty otherwise.
+  std::vector<cv::Mat> distinct;
   GateResult gate;                     // what isolate() kept
   std::vector<double> silhouette_iou;  // per camera vs the dataset's masks, when asked for
   double silhouettes_ms = 0, hull_ms = 0, centerline_ms = 0;
@@ -59,8 +63,11 @@ class Perception {
   // (person_gate.h): silhouettes, rays, hull and centerline then hold that person alone.
   // Nothing changes when the hull holds no one else.
   // With `dropped`, each camera's silhouette pixels the gate took away (the others') go there.
+  // With `others_before` (the previous frame's GateResult::others), the volume near where the
+  // others were stays theirs.
   GateResult isolate(Observation& obs, const PlacedSurface& body,
-                     std::vector<cv::Mat>* dropped = nullptr) const;
+                     std::vector<cv::Mat>* dropped = nullptr,
+                     const std::vector<Eigen::Vector3d>* others_before = nullptr) const;
   // The rays of `obs` from the cameras in which none of the `dropped` pixels touches what is
   // kept (there, the person's silhouette may hold someone else in front): for learning the
   // person's colours. All rays when every camera has someone touching the person.
@@ -74,8 +81,8 @@ class Perception {
 
  private:
   // Moves the pixels of `silhouette` in colours the person does not wear (AppearanceModel::
-  // foreign) to the returned mask.
-  cv::Mat foreign_pixels(cv::Mat& silhouette, const cv::Mat& colour) const;
+  // foreign) to the returned mask; those in colours the person alone wears go to `distinct`.
+  cv::Mat foreign_pixels(cv::Mat& silhouette, const cv::Mat& colour, cv::Mat& distinct) const;
   // Views, hull and centerline of `silhouettes` (with obs.cover), timed into `obs`.
   void shape(const std::vector<cv::Mat>& silhouettes, Observation& obs) const;
   const Dataset* dataset_;

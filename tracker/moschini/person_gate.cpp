@@ -20,14 +20,85 @@ double body_distance(const PlacedSurface& body, const Eigen::Vector3d& x) {
   return best;
 }
 
+// Paints into `mask` each capsule of the body, widened by `margin`, as a thick segment between
+// its ends' projections (the radius taken at the nearer end's depth).
+void paint_body(const Camera& cam, const PlacedSurface& body, double margin, cv::Mat& mask) {
+  for (const PlacedCapsule& capsule : body) {
+    const Eigen::Vector3d qa = cam.to_camera(capsule.a), qb = cam.to_camera(capsule.a + capsule.ab);
+    const double z = std::min(qa.z(), qb.z());
+    if (z <= 0.05) continue;
+    const double r = (std::max(capsule.ra, capsule.ra + capsule.dr) + margin) * cam.K(0, 0) / z;
+    const Eigen::Vector2d pa = cam.project_camera(qa), pb = cam.project_camera(qb);
+    const cv::Point a(static_cast<int>(std::lround(pa.x())), static_cast<int>(std::lround(pa.y())));
+    const cv::Point b(static_cast<int>(std::lround(pb.x())), static_cast<int>(std::lround(pb.y())));
+    const int radius = static_cast<int>(std::ceil(r));
+    cv::line(mask, a, b, cv::Scalar(255), 2 * radius + 1);
+    cv::circle(mask, a, radius, cv::Scalar(255), cv::FILLED);
+    cv::circle(mask, b, radius, cv::Scalar(255), cv::FILLED);
+  }
+}
+
+// Paints into `mask` the image of each voxel: a disc of about its circumscribed sphere's image
+// (plus a pixel, so that neighbouring discs leave no cracks).
+void paint_voxels(const Camera& cam, const std::vector<Eigen::Vector3d>& centres,
+                  double half_diagonal, cv::Mat& mask) {
+  for (const Eigen::Vector3d& p : centres) {
+    const Eigen::Vector3d q = cam.to_camera(p);
+    if (q.z() <= half_diagonal) continue;
+    const Eigen::Vector2d px = cam.project_camera(q);
+    const int r = static_cast<int>(std::ceil(half_diagonal * cam.K(0, 0) / q.z())) + 1;
+    cv::circle(
+        mask,
+        cv::Point(static_cast<int>(std::lround(px.x())), static_cast<int>(std::lround(px.y()))), r,
+        cv::Scalar(255), cv::FILLED);
+  }
+}
+
+// Per cell of the hull's box, the distance in voxels (Chebyshev) to the nearest of `points` that
+// lie inside the box, up to `limit`; farther cells hold limit + 1.
+std::vector<int> steps_to(const Occupancy& hull, const std::vector<Eigen::Vector3d>& points,
+                          int limit) {
+  const Eigen::Vector3i& n = hull.size;
+  std::vector<int> steps(hull.cells.size(), limit + 1);
+  std::vector<int> queue;
+  for (const Eigen::Vector3d& p : points) {
+    const Eigen::Vector3i r = hull.grid.index(p) - hull.lo;
+    if ((r.array() < 0).any() || (r.array() >= n.array()).any()) continue;
+    const int i = (r.y() * n.z() + r.z()) * n.x() + r.x();
+    if (steps[i] == 0) continue;
+    steps[i] = 0;
+    queue.push_back(i);
+  }
+  for (size_t q = 0; q < queue.size(); ++q) {
+    const int i = queue[q];
+    if (steps[i] >= limit) continue;
+    const int cx = i % n.x(), cz = (i / n.x()) % n.z(), cy = i / (n.x() * n.z());
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dz = -1; dz <= 1; ++dz) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int ax = cx + dx, ay = cy + dy, az = cz + dz;
+          if (ax < 0 || ay < 0 || az < 0 || ax >= n.x() || ay >= n.y() || az >= n.z()) continue;
+          const int j = (ay * n.z() + az) * n.x() + ax;
+          if (steps[j] > steps[i] + 1) {
+            steps[j] = steps[i] + 1;
+            queue.push_back(j);
+          }
+        }
+      }
+    }
+  }
+  return steps;
+}
+
 }  // namespace
 
 PersonGate::PersonGate(std::vector<Camera> cameras, const GateOptions& options)
     : cameras_(std::move(cameras)), options_(options) {}
 
 GateResult PersonGate::restrict(const Occupancy& hull, const PlacedSurface& body,
-                                std::vector<cv::Mat>& silhouettes,
-                                std::vector<cv::Mat>* cover) const {
+                                std::vector<cv::Mat>& silhouettes, std::vector<cv::Mat>* cover,
+                                const std::vector<cv::Mat>* distinct,
+                                const std::vector<Eigen::Vector3d>* others_before) const {
   GateResult result;
   const Eigen::Vector3i& n = hull.size;
   const auto cell = [&](int x, int y, int z) { return (y * n.z() + z) * n.x() + x; };
@@ -94,60 +165,61 @@ GateResult PersonGate::restrict(const Occupancy& hull, const PlacedSurface& body
         [](const Component& a, const Component& b) { return a.nearest < b.nearest; });
     keep[nearest - components.begin()] = 1;
   }
-  std::vector<Eigen::Vector3d> kept;
+  const double voxel = hull.grid.voxel;
+  const int limit = static_cast<int>(std::ceil(options_.reach_m / voxel));
+  std::vector<int> steps;  // to where the others were on the frame before
+  if (options_.others_to_cover && others_before && !others_before->empty())
+    steps = steps_to(hull, *others_before, limit);
+  std::vector<Eigen::Vector3d> kept, dropped;
   for (size_t i = 0; i < hull.cells.size(); ++i) {
     if (!hull.cells[i]) continue;
     const int k = keep[label[i]];
+    const int cx = static_cast<int>(i) % n.x(), cz = (static_cast<int>(i) / n.x()) % n.z(),
+              cy = static_cast<int>(i) / (n.x() * n.z());
+    const Eigen::Vector3d centre = hull.grid.center(hull.lo + Eigen::Vector3i(cx, cy, cz));
+    // Everyone moves little from one frame to the next: a voxel nearer to where the others
+    // were than to the person's body is theirs (what keeps a limb from following someone who
+    // touches it), unless it lies on the body. Only what the components and the reach gave the
+    // others is remembered: a voxel of the person's taken this way would otherwise stay theirs.
+    const bool theirs = !steps.empty() && steps[i] <= limit &&
+                        distance[i] > options_.own_margin_m && steps[i] * voxel < distance[i];
     if (k == 1 || (k == 2 && distance[i] <= options_.reach_m)) {
-      const int cx = static_cast<int>(i) % n.x(), cz = (static_cast<int>(i) / n.x()) % n.z(),
-                cy = static_cast<int>(i) / (n.x() * n.z());
-      kept.push_back(hull.grid.center(hull.lo + Eigen::Vector3i(cx, cy, cz)));
-    } else {
-      ++result.dropped_voxels;
+      if (!theirs) {
+        kept.push_back(centre);
+        continue;
+      }
+    } else if (options_.others_to_cover) {
+      result.others.push_back(centre);
     }
+    ++result.dropped_voxels;
+    if (options_.others_to_cover) dropped.push_back(centre);
   }
   result.kept_voxels = static_cast<int>(kept.size());
   if (result.dropped_voxels == 0) return result;
   result.changed = true;
-  // Each kept voxel covers a disc of about its circumscribed sphere's image (plus a pixel, so
-  // that neighbouring discs leave no cracks).
-  const double half_diagonal = 0.5 * std::sqrt(3.0) * hull.grid.voxel;
+  const double half_diagonal = 0.5 * std::sqrt(3.0) * voxel;
+  if (options_.others_to_cover && cover && cover->size() < silhouettes.size())
+    cover->resize(silhouettes.size());
   for (size_t c = 0; c < cameras_.size() && c < silhouettes.size(); ++c) {
     const Camera& cam = cameras_[c];
     cv::Mat reach = cv::Mat::zeros(silhouettes[c].size(), CV_8UC1);
     cv::Mat near = cv::Mat::zeros(silhouettes[c].size(), CV_8UC1);
-    // Each capsule, widened by the margin, as a thick segment between its ends' projections
-    // (the radius taken at the nearer end's depth).
-    for (const PlacedCapsule& capsule : body) {
-      const Eigen::Vector3d qa = cam.to_camera(capsule.a),
-                            qb = cam.to_camera(capsule.a + capsule.ab);
-      const double z = std::min(qa.z(), qb.z());
-      if (z <= 0.05) continue;
-      const double r =
-          (std::max(capsule.ra, capsule.ra + capsule.dr) + options_.margin_m) * cam.K(0, 0) / z;
-      const Eigen::Vector2d pa = cam.project_camera(qa), pb = cam.project_camera(qb);
-      const cv::Point a(static_cast<int>(std::lround(pa.x())),
-                        static_cast<int>(std::lround(pa.y())));
-      const cv::Point b(static_cast<int>(std::lround(pb.x())),
-                        static_cast<int>(std::lround(pb.y())));
-      const int radius = static_cast<int>(std::ceil(r));
-      cv::line(near, a, b, cv::Scalar(255), 2 * radius + 1);
-      cv::circle(near, a, radius, cv::Scalar(255), cv::FILLED);
-      cv::circle(near, b, radius, cv::Scalar(255), cv::FILLED);
-    }
-    for (const Eigen::Vector3d& p : kept) {
-      const Eigen::Vector3d q = cam.to_camera(p);
-      if (q.z() <= half_diagonal) continue;
-      const Eigen::Vector2d px = cam.project_camera(q);
-      const int r = static_cast<int>(std::ceil(half_diagonal * cam.K(0, 0) / q.z())) + 1;
-      cv::circle(
-          reach,
-          cv::Point(static_cast<int>(std::lround(px.x())), static_cast<int>(std::lround(px.y()))),
-          r, cv::Scalar(255), cv::FILLED);
-    }
+    paint_body(cam, body, options_.margin_m, near);
+    paint_voxels(cam, kept, half_diagonal, reach);
     reach &= near;
     silhouettes[c] = silhouettes[c] & reach;
     if (cover && c < cover->size() && !(*cover)[c].empty()) (*cover)[c] = (*cover)[c] & reach;
+    if (!options_.others_to_cover || !cover) continue;
+    cv::Mat others = cv::Mat::zeros(silhouettes[c].size(), CV_8UC1);
+    paint_voxels(cam, dropped, half_diagonal, others);
+    cv::Mat own = cv::Mat::zeros(silhouettes[c].size(), CV_8UC1);
+    paint_body(cam, body, options_.own_margin_m, own);
+    cv::Mat moved = silhouettes[c] & others & ~own;
+    if (distinct && c < distinct->size() && !(*distinct)[c].empty()) moved &= ~(*distinct)[c];
+    result.covered_pixels += cv::countNonZero(moved);
+    silhouettes[c] &= ~moved;
+    cv::Mat& covered = (*cover)[c];
+    covered = covered.empty() ? moved : covered | moved;
   }
   return result;
 }

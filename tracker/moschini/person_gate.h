@@ -27,6 +27,14 @@ struct GateOptions {
   // another's through someone else, touches the person's hull and would otherwise keep the
   // other person's pixels.
   double margin_m = 0.15;
+  // With silhouettes that show everyone (background subtraction), a kept pixel is someone
+  // else's when the last body (widened by own_margin_m) does not project onto it and the volume
+  // the gate dropped does: the ray passes the person and meets the others. Such a pixel moves to
+  // the cover (it may hide the person but casts no ray), so that the others' outline next to the
+  // person does not pull the limbs towards them. Off for ground-truth silhouettes, which hold
+  // the person's own pixels only.
+  bool others_to_cover = false;
+  double own_margin_m = 0.05;
 };
 
 // What the gate kept.
@@ -35,6 +43,10 @@ struct GateResult {
   int components = 0;    // connected components of the hull (26-neighbourhood)
   int kept_voxels = 0;
   int dropped_voxels = 0;
+  int covered_pixels = 0;  // kept pixels moved to the cover (GateOptions::others_to_cover)
+  // With others_to_cover, the centres of the voxels given to the others: where they are, for
+  // the next frame's restrict().
+  std::vector<Eigen::Vector3d> others;
 };
 
 class PersonGate {
@@ -44,9 +56,15 @@ class PersonGate {
   // reach_m of it when shared; when none touches, the nearest one. When that drops any voxel,
   // each silhouette keeps only its pixels under the projection of a kept voxel and within
   // margin_m of the body's projection, and so does each `cover` mask (when given and not
-  // empty). Thread-safe.
+  // empty). With others_to_cover, the kept pixels the dropped volume explains better than the
+  // body go to `cover` (created when empty), but for those in `distinct` (per camera, when given
+  // and not empty: pixels whose colour says they are the person's), and a voxel beyond
+  // own_margin_m of the body that lies nearer to `others_before` (the previous frame's
+  // GateResult::others) than to the body is the others'. Thread-safe.
   GateResult restrict(const Occupancy& hull, const PlacedSurface& body,
-                      std::vector<cv::Mat>& silhouettes, std::vector<cv::Mat>* cover) const;
+                      std::vector<cv::Mat>& silhouettes, std::vector<cv::Mat>* cover,
+                      const std::vector<cv::Mat>* distinct = nullptr,
+                      const std::vector<Eigen::Vector3d>* others_before = nullptr) const;
 
  private:
   std::vector<Camera> cameras_;

@@ -5,25 +5,13 @@
 
 #include "core/error.h"
 #include "core/rig.h"
+#include "tests/tracker/moschini/sphere_silhouette.h"
 #include "tracker/moschini/visual_hull.h"
 
 namespace simcap::tracker {
 namespace {
 
-// The silhouette of a sphere, drawn analytically: a pixel is inside when the ray through its
-// centre passes within `radius` of the sphere's centre (Camera::unproject removes distortion).
-cv::Mat sphere_silhouette(const Camera& cam, const Eigen::Vector3d& c, double radius) {
-  cv::Mat mask(cam.height, cam.width, CV_8UC1, cv::Scalar(0));
-  const Eigen::Vector3d o = cam.centre();
-  for (int v = 0; v < cam.height; ++v) {
-    for (int u = 0; u < cam.width; ++u) {
-      const Eigen::Vector3d d = cam.unproject({u, v});
-      const double along = (c - o).dot(d);
-      if (along > 0 && ((c - o) - along * d).norm() <= radius) mask.at<std::uint8_t>(v, u) = 255;
-    }
-  }
-  return mask;
-}
+using testing::sphere_silhouette;
 
 // Cameras around and above a target at three elevations, with lens distortion.
 std::vector<Camera> dome_rig(const Eigen::Vector3d& target) {
