@@ -157,6 +157,15 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
                   "surface (0: the nearest, 0.5: the median)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  cmd->add_option("--consensus-px", o.sik.multiview_consensus_px,
+                  "sik --effectors multiview: triangulate each part from the cameras whose tracks "
+                  "agree within this many pixels (RANSAC over camera pairs; 0: every tracking "
+                  "camera in one DLT)")
+      ->check(CLI::Range(0.0, 1000.0))
+      ->capture_default_str();
+  add_choice(cmd, "--reseed", o.sik.multiview_reseed, kOnOff,
+             "sik --effectors multiview: on (a camera whose track of a part disagrees with the "
+             "cameras that agree, or that lost it, is moved onto their point) or off");
   cmd->add_option_function<double>(
          "--refind-reach",
          [&o](double reach) {

@@ -170,6 +170,19 @@ void CameraTracker::track(const cv::Mat& bgr, const cv::Mat& silhouette,
   previous_ = std::move(current);
 }
 
+void CameraTracker::correct(Effector e, cv::Point2d at) {
+  const int i = part_index(e);
+  CfofTracker& t = parts_[i];
+  if (t.state() == CfofState::lost) {
+    if (!t.restart(previous_, at)) return;
+    untracked_[i] = 0;
+  } else {
+    t.shift(at - t.centre());
+  }
+  surface_[i].clear();
+  for (const cv::Point2f& f : t.selection()) surface_[i].emplace_back(f);
+}
+
 cv::Point2d CameraTracker::position(Effector e) const {
   return e == Effector::pelvis ? pelvis_position_ : parts_[part_index(e)].centre();
 }

@@ -76,6 +76,11 @@ class CameraTracker {
              const std::array<double, kEffectorCount>& depth,
              const std::array<std::optional<cv::Point2d>, kEffectorCount>& root = {});
 
+  // Moves a part to `at` in the last frame, where other cameras put it (multiview: their
+  // consensus point projected): a tracked or predicted part is shifted there, a lost one
+  // restarts there when its colours show (CfofTracker::restart). Not for the pelvis.
+  void correct(Effector e, cv::Point2d at);
+
   // The part's image position (the ROI centre; the pelvis from Alg. 6).
   cv::Point2d position(Effector e) const;
   CfofState state(Effector e) const;

@@ -45,6 +45,12 @@ struct SikTrackOptions {
   // the changed depths change the occlusion rule's choices and lose a hand for good on gest2
   // and gest3 (UNZUETA.md), so the median stays.
   double surface_quantile = 0.5;
+  // --effectors multiview: a part is triangulated from the cameras whose tracks agree within this
+  // many pixels (part_consensus.h; 0: every tracking camera in one DLT, as before), and when
+  // `multiview_reseed`, a camera that disagrees, predicts the part hidden or has lost it is moved
+  // onto the agreed point (studio4 267.8 -> 172.4 mm, hop4 229.0 -> 211.8 mm; UNZUETA.md).
+  double multiview_consensus_px = 12.0;
+  bool multiview_reseed = true;
   SikPelvisWeights pelvis_weights;
   int max_frames = -1;  // the first frames only; < 0: every frame
   bool quiet = false;

@@ -1,5 +1,6 @@
 #include "tracker/unzueta/unzueta_job.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include "tracker/common/png_decoder.h"
 #include "tracker/common/triangulation.h"
 #include "tracker/unzueta/depth_lookup.h"
+#include "tracker/unzueta/part_consensus.h"
 #include "tracker/unzueta/part_model.h"
 #include "tracker/unzueta/sik.h"
 #include "tracker/unzueta/sik_track_job.h"
@@ -91,6 +93,9 @@ class Pipeline {
       UnzuetaFrame out;
       out.frame = f;
       out.centre = k == 0 ? centre_ : lift(images);
+      if (options_.effectors == EffectorSource::multiview && options_.multiview_reseed) {
+        reseed(out.centre);
+      }
       solve(out);
       centre_ = out.centre;
       if (sink) sink(out, cameras_, trackers_);
@@ -300,28 +305,58 @@ class Pipeline {
 
   // --- every frame --------------------------------------------------------------------------
 
+  // A part from every camera that tracks it: the views that agree (part_consensus; with
+  // multiview_consensus_px 0 all of them in one DLT), else one camera's ray at the part's
+  // previous depth. Remembers which cameras agreed, for `reseed`.
+  Eigen::Vector3d lift_multiview(Effector e) const {
+    const int i = index_of(e);
+    std::vector<PixelObservation> views;
+    std::vector<size_t> view_camera;
+    int seen = -1;  // a camera that still has the part (tracking or predicted)
+    for (size_t k = 0; k < cameras_.size(); ++k) {
+      const CfofState s = trackers_[k].state(e);
+      if (s == CfofState::lost) continue;
+      if (seen < 0 || s == CfofState::tracking) seen = static_cast<int>(k);
+      if (s != CfofState::tracking) continue;
+      const cv::Point2d p = trackers_[k].position(e);
+      views.push_back({&camera(cameras_[k]), {p.x, p.y}});
+      view_camera.push_back(k);
+    }
+    agreeing_[i].assign(cameras_.size(), false);
+    if (options_.multiview_consensus_px <= 0) {
+      if (const auto x = triangulate(views)) return *x;
+    } else if (const auto c = part_consensus(views, {options_.multiview_consensus_px})) {
+      for (size_t v = 0; v < views.size(); ++v) agreeing_[i][view_camera[v]] = c->inlier[v];
+      return c->position;
+    }
+    if (seen < 0) return centre_[i];
+    // One view (or only predictions): along its ray at the part's previous depth.
+    const Camera& cam = camera(cameras_[seen]);
+    return point_at_depth(cam, trackers_[seen].position(e), cam.to_camera(centre_[i]).z());
+  }
+
+  // Multiview: where two or more cameras agree on a part, the cameras that disagree, predict it
+  // hidden or have lost it are moved to the agreed point's projection (CameraTracker::correct).
+  void reseed(const std::array<Eigen::Vector3d, kEffectorCount>& centre) {
+    for (Effector e : kEffectors) {
+      if (e == Effector::pelvis) continue;
+      const std::vector<bool>& agree = agreeing_[index_of(e)];
+      if (std::count(agree.begin(), agree.end(), true) < 2) continue;
+      const Eigen::Vector3d& x = centre[index_of(e)];
+      for (size_t k = 0; k < cameras_.size(); ++k) {
+        const Camera& cam = camera(cameras_[k]);
+        if (agree[k] || !cam.in_frustum(x)) continue;
+        if (const auto p = cam.project(x)) trackers_[k].correct(e, {p->x(), p->y()});
+      }
+    }
+  }
+
   std::array<Eigen::Vector3d, kEffectorCount> lift(const std::vector<Images>& images) const {
     std::array<Eigen::Vector3d, kEffectorCount> out = centre_;
     for (Effector e : kEffectors) {
       const int i = index_of(e);
       if (options_.effectors == EffectorSource::multiview) {
-        std::vector<PixelObservation> views;
-        int seen = -1;  // a camera that still has the part (tracking or predicted)
-        for (size_t k = 0; k < cameras_.size(); ++k) {
-          const CfofState s = trackers_[k].state(e);
-          if (s == CfofState::lost) continue;
-          if (seen < 0 || s == CfofState::tracking) seen = static_cast<int>(k);
-          if (s != CfofState::tracking) continue;
-          const cv::Point2d p = trackers_[k].position(e);
-          views.push_back({&camera(cameras_[k]), {p.x, p.y}});
-        }
-        if (const auto x = triangulate(views)) {
-          out[i] = *x;
-        } else if (seen >= 0) {
-          // One view (or only predictions): along its ray at the part's previous depth.
-          const Camera& cam = camera(cameras_[seen]);
-          out[i] = point_at_depth(cam, trackers_[seen].position(e), cam.to_camera(centre_[i]).z());
-        }
+        out[i] = lift_multiview(e);
         continue;
       }
       const int c = cameras_[0];
@@ -385,6 +420,7 @@ class Pipeline {
   std::vector<int> he15_;
   std::array<int, kEffectorCount> limb_root_{};
   std::array<Eigen::Vector3d, kEffectorCount> centre_{};
+  mutable std::array<std::vector<bool>, kEffectorCount> agreeing_;
   std::array<double, kEffectorCount> mono_depth_{};
   Eigen::Vector3d pelvis_offset_ = Eigen::Vector3d::Zero();
   std::vector<Eigen::Quaterniond> rotation_;

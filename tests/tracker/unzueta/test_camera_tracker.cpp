@@ -1,7 +1,7 @@
 // CameraTracker's re-finding of a lost hand on a synthetic person: a hand whose arm swings
 // away faster than its flock can follow is lost, and after CameraTrackerParams::refind_patience
 // frames it restarts on the far end of its skin blob reachable from the shoulder, and only
-// within the arm's reach.
+// within the arm's reach; and its correction from outside (multiview re-seeding).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -123,6 +123,37 @@ TEST(CameraTracker, HandBeyondTheArmsReachIsNotReFound) {
   params.refind_reach[index_of(Effector::right_hand)] = 60 / kPersonPx;
   const auto track = track_hand(params, 4 + params.refind_patience + 5);
   EXPECT_NE(track.back().first, CfofState::tracking);
+}
+
+// Multiview re-seeding (CameraTracker::correct): the hand lost in the swing is moved to where
+// the other cameras put it and is followed there; without the correction it is not.
+TEST(CameraTracker, CorrectedHandIsFollowedWhereOtherCamerasPutIt) {
+  const cv::Point2d hand(40, 97);
+  for (bool corrected : {false, true}) {
+    CameraTracker tracker;
+    InitialRegions regions;
+    regions.person_px = kPersonPx;
+    regions.roi[index_of(Effector::head)] = cv::Rect2d(136, 16, 48, 48);
+    regions.roi[index_of(Effector::right_hand)] = cv::Rect2d(100, 180, 24, 24);
+    const Frame hanging = person(false), raised = person(true);
+    tracker.initialize(hanging.bgr, hanging.silhouette, regions);
+    std::array<double, kEffectorCount> depth;
+    depth.fill(std::numeric_limits<double>::quiet_NaN());
+    for (int f = 0; f < 3; ++f) tracker.track(raised.bgr, raised.silhouette, depth);
+    ASSERT_NE(tracker.state(Effector::right_hand), CfofState::tracking);
+    if (corrected) tracker.correct(Effector::right_hand, hand);
+    for (int f = 0; f < 3; ++f) {
+      tracker.track(raised.bgr, raised.silhouette, depth);
+      // CFOF centres the flock on the hand and the wrist beside it.
+      const bool on_hand = tracker.state(Effector::right_hand) == CfofState::tracking &&
+                           distance(tracker.position(Effector::right_hand), hand) < 15.0;
+      EXPECT_EQ(on_hand, corrected) << "frame " << f;
+    }
+    // A tracked part is moved by the correction.
+    const cv::Point2d head = tracker.position(Effector::head) + cv::Point2d(10, 0);
+    tracker.correct(Effector::head, head);
+    EXPECT_LT(distance(tracker.position(Effector::head), head), 1e-9);
+  }
 }
 
 }  // namespace
