@@ -26,6 +26,7 @@ MoschiniTracker::MoschiniTracker(const BodyDimensions& dims, const BodySurface& 
       icp_(model_, surface, options.icp),
       refiner_(model_, surface, options.icp.refine),
       polisher_(model_, surface, options.polish),
+      silhouette_starter_(model_, surface, options.silhouette_start),
       filter_(model_, options.filter) {}
 
 IcpTargets MoschiniTracker::targets_of(const Observation& obs) {
@@ -98,6 +99,10 @@ StickPose MoschiniTracker::best_upright(const Observation& obs, const StickPose*
       fits[i].score = search_limbs(targets, fits[i].pose, fits[i].score);
     }
     if (fits[i].score < best.score) best = fits[i];
+  }
+  if (current && !(silhouette_score(best.pose, obs) <
+                   options_.recovery.margin * silhouette_score(*current, obs))) {
+    return *current;
   }
   return best.pose;
 }
@@ -237,6 +242,11 @@ TrackStep MoschiniTracker::step(const Observation& obs) {
     const int every = options_.swap_check_every;
     resolve_swapped_limbs(targets, measured, every > 0 && steps_++ % every == 0);
     polisher_.refine(targets, measured);
+    if (options_.silhouette_start.iterations > 0) {
+      StickPose still = pose_;
+      silhouette_starter_.refine(targets, still);
+      if (polisher_.cost(targets, still) < polisher_.cost(targets, measured)) measured = still;
+    }
     diagnose(measured, obs, out);
     const RecoveryOptions& rec = options_.recovery;
     char why[96] = "";
