@@ -242,7 +242,9 @@ TrackStep MoschiniTracker::step(const Observation& obs) {
     const int every = options_.swap_check_every;
     resolve_swapped_limbs(targets, measured, every > 0 && steps_++ % every == 0);
     polisher_.refine(targets, measured);
-    if (options_.silhouette_start.iterations > 0) {
+    // Not with other people about: the silhouettes alone cannot tell whose pixels they are (the
+    // hull the person gate cut to the tracked person's components can).
+    if (options_.silhouette_start.iterations > 0 && obs.cover.empty()) {
       StickPose still = pose_;
       silhouette_starter_.refine(targets, still);
       if (polisher_.cost(targets, still) < polisher_.cost(targets, measured)) measured = still;
