@@ -100,8 +100,9 @@ StickPose MoschiniTracker::best_upright(const Observation& obs, const StickPose*
     }
     if (fits[i].score < best.score) best = fits[i];
   }
-  if (current && !(silhouette_score(best.pose, obs) <
-                   options_.recovery.margin * silhouette_score(*current, obs))) {
+  if (current && options_.trust_silhouettes &&
+      !(silhouette_score(best.pose, obs) <
+        options_.recovery.margin * silhouette_score(*current, obs))) {
     return *current;
   }
   return best.pose;
@@ -244,7 +245,8 @@ TrackStep MoschiniTracker::step(const Observation& obs) {
     polisher_.refine(targets, measured);
     // Not with other people about: the silhouettes alone cannot tell whose pixels they are (the
     // hull the person gate cut to the tracked person's components can).
-    if (options_.silhouette_start.iterations > 0 && obs.cover.empty()) {
+    if (options_.trust_silhouettes && options_.silhouette_start.iterations > 0 &&
+        obs.cover.empty()) {
       StickPose still = pose_;
       silhouette_starter_.refine(targets, still);
       if (polisher_.cost(targets, still) < polisher_.cost(targets, measured)) measured = still;
