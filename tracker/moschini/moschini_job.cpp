@@ -163,6 +163,9 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
     last_body = place(surface, plain.geometry(start));
   } else {
     // Assumption: in the first frames the person stands upright on the floor (auto_start.h).
+    // The capsules are fitted at a guessed first pose: their silhouette cost cannot overrule
+    // the centerline (TrackerOptions::trust_silhouettes).
+    topt.trust_silhouettes = false;
     std::vector<Observation> first;
     for (int i = 0; i < std::min<int>(kStartFrames, static_cast<int>(frames.size())); ++i) {
       first.push_back(perception.observe(frames[i]));

@@ -26,6 +26,7 @@ MoschiniTracker::MoschiniTracker(const BodyDimensions& dims, const BodySurface& 
       icp_(model_, surface, options.icp),
       refiner_(model_, surface, options.icp.refine),
       polisher_(model_, surface, options.polish),
+      silhouette_starter_(model_, surface, options.silhouette_start),
       filter_(model_, options.filter) {}
 
 IcpTargets MoschiniTracker::targets_of(const Observation& obs) {
@@ -98,6 +99,11 @@ StickPose MoschiniTracker::best_upright(const Observation& obs, const StickPose*
       fits[i].score = search_limbs(targets, fits[i].pose, fits[i].score);
     }
     if (fits[i].score < best.score) best = fits[i];
+  }
+  if (current && options_.trust_silhouettes &&
+      !(silhouette_score(best.pose, obs) <
+        options_.recovery.margin * silhouette_score(*current, obs))) {
+    return *current;
   }
   return best.pose;
 }
@@ -237,6 +243,14 @@ TrackStep MoschiniTracker::step(const Observation& obs) {
     const int every = options_.swap_check_every;
     resolve_swapped_limbs(targets, measured, every > 0 && steps_++ % every == 0);
     polisher_.refine(targets, measured);
+    // Not with other people about: the silhouettes alone cannot tell whose pixels they are (the
+    // hull the person gate cut to the tracked person's components can).
+    if (options_.trust_silhouettes && options_.silhouette_start.iterations > 0 &&
+        obs.cover.empty()) {
+      StickPose still = pose_;
+      silhouette_starter_.refine(targets, still);
+      if (polisher_.cost(targets, still) < polisher_.cost(targets, measured)) measured = still;
+    }
     diagnose(measured, obs, out);
     const RecoveryOptions& rec = options_.recovery;
     char why[96] = "";
