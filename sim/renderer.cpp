@@ -159,6 +159,8 @@ struct Renderer::Lanes {
   alignas(64) float red[N], green[N], blue[N];  // radiance, summed over samples
   alignas(64) float albedo[3][N], normal[3][N], geometric[3][N], position[3][N];
   int part[N], actor[N];
+  // The random streams continued by each lane's pixel, which every sample continues in turn.
+  std::uint64_t jitter_key[N], shutter_key[N];
 };
 
 void Renderer::trace_camera_rays(const ShotState& shot, int px, int py, int sample,
@@ -174,10 +176,8 @@ void Renderer::trace_camera_rays(const ShotState& shot, int px, int py, int samp
   } else {
     alignas(64) float jx[N], jy[N];
     for (int k = 0; k < N; ++k) {
-      const int x = px + k % B, y = py + k / B;
-      const std::uint64_t pixel = static_cast<std::uint64_t>(y) * rays.width() + x;
       const std::uint64_t bits =
-          random_bits_after(shot.jitter, {pixel, static_cast<std::uint64_t>(sample)});
+          random_bits_after(l.jitter_key[k], {static_cast<std::uint64_t>(sample)});
       jx[k] = uniform01(bits) - 0.5f;
       jy[k] = uniform01(mix64(bits)) - 0.5f;
     }
@@ -190,10 +190,8 @@ void Renderer::trace_camera_rays(const ShotState& shot, int px, int py, int samp
     // Sample s of n is jittered within the s-th of n equal parts of the exposure.
     const float part = 1.f / static_cast<float>(samples_);
     for (int k = 0; k < N; ++k) {
-      const std::uint64_t pixel =
-          static_cast<std::uint64_t>(py + k / B) * rays.width() + px + k % B;
       const float u =
-          uniform01(random_bits_after(shot.shutter, {pixel, static_cast<std::uint64_t>(sample)}));
+          uniform01(random_bits_after(l.shutter_key[k], {static_cast<std::uint64_t>(sample)}));
       const float t =
           ray.time[k] + shot.times.exposure * ((static_cast<float>(sample - 1) + u) * part - 0.5f);
       ray.time[k] = std::clamp(t, 0.f, 1.f);
@@ -413,6 +411,14 @@ RayCounts Renderer::render_tile(const ShotState& shot, const Tile& tile, Rendere
         l.valid[k] = px + k % B < tile.x1 && py + k / B < tile.y1 ? -1 : 0;
         l.red[k] = l.green[k] = l.blue[k] = 0.f;
         counts.camera += l.valid[k] ? last_sample + 1 : 0;
+      }
+      if (last_sample > 0) {
+        for (int k = 0; k < N; ++k) {
+          const std::uint64_t pixel =
+              static_cast<std::uint64_t>(py + k / B) * rays.width() + px + k % B;
+          l.jitter_key[k] = random_bits_after(shot.jitter, {pixel});
+          if (shot.blur) l.shutter_key[k] = random_bits_after(shot.shutter, {pixel});
+        }
       }
       for (int s = 0; s <= last_sample; ++s) {
         trace_camera_rays(shot, px, py, s, l);
