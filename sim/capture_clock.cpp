@@ -29,8 +29,10 @@ CaptureClock::CaptureClock(const Scene& scene)
   readout_s_ = 1e-3 * t.readout_ms;
   if (scene.render.samples_per_pixel > 1) exposure_s_ = scene.render.shutter / fps_;
   const double window = readout_s_ + exposure_s_;
-  if (window > 0) {
+  if (readout_s_ > 0) {
     time_steps_ = std::min(129, 1 + static_cast<int>(std::ceil(window * fps_ * kStepsPerFrame)));
+  } else if (exposure_s_ > 0) {
+    time_steps_ = 3;
   }
   for (size_t c = 0; c < offset_s_.size(); ++c) {
     auto g = std::find_if(groups_.begin(), groups_.end(),
