@@ -1,8 +1,9 @@
 // `simcap render` with the capture nuisances on: a perturbed calibration differs from the true
 // one in gt/ by exactly the recorded perturbation while the images stay those of the true
 // cameras; a camera out of sync by whole frame periods sees what a synchronised one sees those
-// frames later; and with offsets, a rolling shutter and motion blur together every table still
-// agrees with the images and with OpenCV's projection at each row's capture time.
+// frames later; motion blur alone leaves depth, mask and parts as they are without it; and with
+// offsets, a rolling shutter and motion blur together every table still agrees with the images
+// and with OpenCV's projection at each row's capture time.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -131,6 +132,33 @@ TEST(CaptureDataset, OffsetsOfWholeFramesShowLaterFrames) {
   // A camera without offset is unchanged.
   EXPECT_EQ(read_text(image_file(dir / "off", "cam00", "rgb", 2)),
             read_text(image_file(dir / "sync", "cam00", "rgb", 2)));
+}
+
+// Without a rolling shutter the labels' rays meet the bodies at the exposure's middle time
+// step: blur changes the colour and nothing else, at a short shutter as at a full one.
+TEST(CaptureDataset, MotionBlurChangesTheColourOnly) {
+  TempDir dir;
+  const std::string samples = "--set render.samples_per_pixel=2";
+  ASSERT_EQ(render(scene_path("studio4"), dir / "sharp", samples), 0);
+  for (const std::string shutter : {"0.25", "1"}) {
+    SCOPED_TRACE(shutter);
+    const fs::path blurred = dir / ("shutter" + shutter);
+    ASSERT_EQ(render(scene_path("studio4"), blurred, samples + " --set render.shutter=" + shutter),
+              0);
+    int colour_changed = 0;
+    for (const std::string cam : {"cam00", "cam01", "cam02", "cam03"}) {
+      for (int frame = 0; frame < kFrames; ++frame) {
+        for (const std::string kind : {"depth", "mask", "parts"}) {
+          EXPECT_EQ(read_text(image_file(dir / "sharp", cam, kind, frame)),
+                    read_text(image_file(blurred, cam, kind, frame)))
+              << cam << " " << kind << " " << frame;
+        }
+        colour_changed += read_text(image_file(dir / "sharp", cam, "rgb", frame)) !=
+                          read_text(image_file(blurred, cam, "rgb", frame));
+      }
+    }
+    EXPECT_GT(colour_changed, 0);
+  }
 }
 
 TEST(CaptureDataset, OffsetsRollingShutterAndBlurKeepTheTruthExact) {
