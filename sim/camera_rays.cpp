@@ -56,15 +56,38 @@ Eigen::Vector3f CameraRays::jittered_direction(int x, int y, float jx, float jy)
 
 void CameraRays::jittered_block(int px, int py, const float* jx, const float* jy, const int* valid,
                                 float* dir_x, float* dir_y, float* dir_z) const {
+  // jittered_ray() lane by lane, in structure-of-arrays form so that the arithmetic vectorises:
+  // the corner loads are gathered first, then every operation runs in jittered_ray's order
+  // (Eigen sums a 3-term product or squared norm as a0 + (a1 + a2)), bit for bit.
+  const int w1 = camera_.width + 1;
+  alignas(64) float x00[kLanes], y00[kLanes], x01[kLanes], y01[kLanes];
+  alignas(64) float x10[kLanes], y10[kLanes], x11[kLanes], y11[kLanes];
+  for (int k = 0; k < kLanes; ++k) {
+    // Lanes outside the image read pixel (px, py)'s corners and are overwritten below.
+    const size_t c = valid[k] ? static_cast<size_t>(py + k / kBlock) * w1 + px + k % kBlock
+                              : static_cast<size_t>(py) * w1 + px;
+    x00[k] = corners_[c].x();
+    y00[k] = corners_[c].y();
+    x01[k] = corners_[c + 1].x();
+    y01[k] = corners_[c + 1].y();
+    x10[k] = corners_[c + w1].x();
+    y10[k] = corners_[c + w1].y();
+    x11[k] = corners_[c + w1 + 1].x();
+    y11[k] = corners_[c + w1 + 1].y();
+  }
+  const Eigen::Matrix3f& m = camera_to_world_;
   alignas(64) float squared[kLanes];
   for (int k = 0; k < kLanes; ++k) {
-    const Eigen::Vector3f d = valid[k]
-                                  ? jittered_ray(px + k % kBlock, py + k / kBlock, jx[k], jy[k])
-                                  : Eigen::Vector3f(Eigen::Vector3f::UnitZ());
-    dir_x[k] = d.x();
-    dir_y[k] = d.y();
-    dir_z[k] = d.z();
-    squared[k] = valid[k] ? d.squaredNorm() : 0.f;
+    const float ax = jx[k] + 0.5f, ay = jy[k] + 0.5f;
+    const float x =
+        (1 - ay) * ((1 - ax) * x00[k] + ax * x01[k]) + ay * ((1 - ax) * x10[k] + ax * x11[k]);
+    const float y =
+        (1 - ay) * ((1 - ax) * y00[k] + ax * y01[k]) + ay * ((1 - ax) * y10[k] + ax * y11[k]);
+    const bool in = valid[k] != 0;
+    dir_x[k] = in ? m(0, 0) * x + (m(0, 1) * y + m(0, 2)) : 0.f;
+    dir_y[k] = in ? m(1, 0) * x + (m(1, 1) * y + m(1, 2)) : 0.f;
+    dir_z[k] = in ? m(2, 0) * x + (m(2, 1) * y + m(2, 2)) : 1.f;
+    squared[k] = in ? dir_x[k] * dir_x[k] + (dir_y[k] * dir_y[k] + dir_z[k] * dir_z[k]) : 0.f;
   }
   // Eigen's normalized(), four lanes at a time: the square roots and divisions are what cost,
   // and each lane's are the same IEEE operations as jittered_direction's.
