@@ -260,9 +260,11 @@ Json describe_capture(const Scene& scene, const CaptureClock& clock) {
       "pixel's ray at its row's time";
   c["joints3d"] = "at the frame's nominal time (first_frame + i) / fps, like angles.csv";
   c["blur"] =
-      "with exposure_ms > 0, rgb averages samples_per_pixel samples spread evenly over each "
-      "row's exposure (t -+ exposure / 2) and jittered over the pixel; depth, mask, parts and "
-      "normal are the ray through the pixel centre at the exposure's middle t, as the 2D truth";
+      "with exposure_ms > 0, rgb averages samples_per_pixel samples, one in each of as many "
+      "equal parts of each row's exposure (t -+ exposure / 2): the ray through the pixel centre "
+      "at the exposure's middle t in the central part, rays jittered over the pixel and within "
+      "their part in the others; depth, mask, parts and normal are that centre ray's, as the 2D "
+      "truth";
   return c;
 }
 

@@ -187,13 +187,18 @@ void Renderer::trace_camera_rays(const ShotState& shot, int px, int py, int samp
   for (int k = 0; k < N; ++k) start_camera_ray(l.packet, k, o, static_cast<unsigned>(k));
   for (int k = 0; k < N; ++k) ray.time[k] = shot.times.at_row(py + k / B);
   if (shot.blur && sample > 0) {
-    // Sample s of n is jittered within the s-th of n equal parts of the exposure.
+    // The exposure is cut into samples_ equal parts: sample 0, the pixel-centre ray at the
+    // exposure's middle that also gives the labels, is the midpoint of the central part
+    // [1/2 - 1/(2n), 1/2 + 1/(2n)); sample s > 0 is jittered within the s-th of the others, u
+    // counting the exposure without the central part.
     const float part = 1.f / static_cast<float>(samples_);
+    const float gap_start = 0.5f - 0.5f * part;
     for (int k = 0; k < N; ++k) {
       const float u =
-          uniform01(random_bits_after(l.shutter_key[k], {static_cast<std::uint64_t>(sample)}));
-      const float t =
-          ray.time[k] + shot.times.exposure * ((static_cast<float>(sample - 1) + u) * part - 0.5f);
+          (static_cast<float>(sample - 1) +
+           uniform01(random_bits_after(l.shutter_key[k], {static_cast<std::uint64_t>(sample)}))) *
+          part;
+      const float t = ray.time[k] + shot.times.exposure * ((u < gap_start ? u : u + part) - 0.5f);
       ray.time[k] = std::clamp(t, 0.f, 1.f);
     }
   }
@@ -388,10 +393,7 @@ RayCounts Renderer::render_tile(const ShotState& shot, const Tile& tile, Rendere
   constexpr int N = Lanes::N, B = CameraRays::kBlock;
   const CameraRays& rays = *shot.rays;
   const bool single_actor = embree_.actor_count() == 1;
-  // With motion blur the first ray (pixel centre, exposure's middle) gives the labels only and
-  // samples_ more, spread over the exposure, the colour; otherwise it is a colour sample too.
-  const int first_colour_sample = shot.blur ? 1 : 0;
-  const int last_sample = shot.blur ? samples_ : samples_ - 1;
+  const int last_sample = samples_ - 1;
   RayCounts counts;
   Lanes l;
   for (int py = tile.y0; py < tile.y1; py += B) {
@@ -439,7 +441,6 @@ RayCounts Renderer::render_tile(const ShotState& shot, const Tile& tile, Rendere
             }
           }
         }
-        if (s < first_colour_sample) continue;
         for (int k = 0; k < N; ++k) {
           l.red[k] += ambient_ * l.albedo[0][k];
           l.green[k] += ambient_ * l.albedo[1][k];
