@@ -1,9 +1,11 @@
 #include "tracker/unzueta/sik_track_job.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <random>
 
 #include "core/csv.h"
@@ -35,6 +37,78 @@ Skeleton humanoid_of_height(double height) {
   BodyParameters body;
   body.height = height;
   return build_humanoid(body);
+}
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+// The thorax's axes from HE15 positions: Y from the pelvis up to vc7, X toward the left shoulder
+// across Y; nullopt when degenerate or not finite.
+std::optional<Eigen::Matrix3d> thorax_axes(const Eigen::Vector3d& pelvis,
+                                           const Eigen::Vector3d& vc7, const Eigen::Vector3d& left,
+                                           const Eigen::Vector3d& right) {
+  const Eigen::Vector3d up = vc7 - pelvis;
+  if (!up.allFinite() || !(left - right).allFinite() || up.norm() < 1e-9) return std::nullopt;
+  const Eigen::Vector3d y = up.normalized();
+  Eigen::Vector3d x = left - right;
+  x -= x.dot(y) * y;
+  if (x.norm() < 1e-9) return std::nullopt;
+  x.normalize();
+  Eigen::Matrix3d axes;
+  axes << x, y, x.cross(y);
+  return axes;
+}
+
+// Moves each shoulder (with its arm) of `skeleton` to the truth's median shoulder position in the
+// thorax frame (thorax_axes at vc7). Lengths alone miss the clavicle's rest direction: a body
+// retargeted from CMU carries its clavicles turned ~25 degrees up and forward in every frame (the
+// source skeleton's clavicle bone points up and out where H-Anim's is level), which SIK's neutral
+// clavicle never reproduces, putting its shoulders ~10 cm off. Unchanged without the four joints.
+Skeleton place_shoulders(const JointTrack& truth, const Skeleton& skeleton) {
+  const std::array<const char*, 4> names = {"humanoid_root", "vc7", "l_shoulder", "r_shoulder"};
+  std::array<int, 4> t{}, s{};
+  for (int i = 0; i < 4; ++i) {
+    t[i] = truth.joint_index(names[i]);
+    s[i] = skeleton.find(names[i]);
+    if (t[i] < 0 || s[i] < 0) return skeleton;
+  }
+  std::array<std::array<std::vector<double>, 3>, 2> local;
+  for (const auto& p : truth.positions) {
+    const auto axes = thorax_axes(p[t[0]], p[t[1]], p[t[2]], p[t[3]]);
+    if (!axes) continue;
+    for (int side = 0; side < 2; ++side) {
+      const Eigen::Vector3d q = axes->transpose() * (p[t[2 + side]] - p[t[1]]);
+      if (!q.allFinite()) continue;
+      for (int k = 0; k < 3; ++k) local[side][k].push_back(q[k]);
+    }
+  }
+  if (local[0][0].empty() || local[1][0].empty()) return skeleton;
+  std::array<Eigen::Vector3d, 2> wanted;
+  for (int side = 0; side < 2; ++side) {
+    for (int k = 0; k < 3; ++k) wanted[side][k] = median(local[side][k]);
+  }
+  std::vector<Eigen::Vector3d> centre;
+  for (const Joint& j : skeleton.joints()) centre.push_back(j.center);
+  // The shoulders span the frame's X, so moving them turns it: a few passes settle both.
+  for (int pass = 0; pass < 4; ++pass) {
+    const auto axes = thorax_axes(centre[s[0]], centre[s[1]], centre[s[2]], centre[s[3]]);
+    if (!axes) return skeleton;
+    for (int side = 0; side < 2; ++side) {
+      const Eigen::Vector3d shift = centre[s[1]] + *axes * wanted[side] - centre[s[2 + side]];
+      for (int j = 0; j < skeleton.size(); ++j) {
+        if (skeleton.is_descendant(j, s[2 + side])) centre[j] += shift;
+      }
+    }
+  }
+  Skeleton placed;
+  for (int j = 0; j < skeleton.size(); ++j) {
+    Joint joint = skeleton[j];
+    joint.center = centre[j];
+    placed.add(std::move(joint));
+  }
+  return placed;
 }
 
 }  // namespace
@@ -85,7 +159,7 @@ Skeleton sik_humanoid_for_track(const JointTrack& truth) {
     joint.center = centre[j];
     fitted.add(std::move(joint));
   }
-  return fitted;
+  return place_shoulders(truth, fitted);
 }
 
 TrackSummary track_dataset_sik(const std::filesystem::path& dataset,

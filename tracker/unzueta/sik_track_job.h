@@ -72,7 +72,10 @@ TrackSummary track_dataset_sik(const std::filesystem::path& dataset,
 // build_humanoid() at the truth's height (the median ratio of tracked bone lengths to the
 // canonical ones), then the bones between each tracked joint and its nearest tracked ancestor
 // scaled to their mean distance in `truth` (a bone shared by two such paths, e.g. the spine below
-// vc7 and a shoulder when only HE15 is tracked, takes the first path's factor).
+// vc7 and a shoulder when only HE15 is tracked, takes the first path's factor). Then each
+// shoulder, with its arm, is moved to the truth's median shoulder position in the thorax frame
+// (origin vc7, Y from humanoid_root to vc7, X toward the left shoulder): a clavicle the motion
+// keeps turned (CMU clips retarget with it ~25 degrees up) belongs to the body SIK solves.
 Skeleton sik_humanoid_for_track(const JointTrack& truth);
 
 }  // namespace simcap
