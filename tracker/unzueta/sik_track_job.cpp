@@ -44,12 +44,12 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-// The thorax's axes from HE15 positions: Y from the pelvis up to vc7, X toward the left shoulder
-// across Y; nullopt when degenerate or not finite.
-std::optional<Eigen::Matrix3d> thorax_axes(const Eigen::Vector3d& pelvis,
-                                           const Eigen::Vector3d& vc7, const Eigen::Vector3d& left,
-                                           const Eigen::Vector3d& right) {
-  const Eigen::Vector3d up = vc7 - pelvis;
+// Axes with Y from `from` to `to` and X toward `left` from `right` across Y; nullopt when
+// degenerate or not finite.
+std::optional<Eigen::Matrix3d> frame_axes(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+                                          const Eigen::Vector3d& left,
+                                          const Eigen::Vector3d& right) {
+  const Eigen::Vector3d up = to - from;
   if (!up.allFinite() || !(left - right).allFinite() || up.norm() < 1e-9) return std::nullopt;
   const Eigen::Vector3d y = up.normalized();
   Eigen::Vector3d x = left - right;
@@ -61,54 +61,113 @@ std::optional<Eigen::Matrix3d> thorax_axes(const Eigen::Vector3d& pelvis,
   return axes;
 }
 
-// Moves each shoulder (with its arm) of `skeleton` to the truth's median shoulder position in the
-// thorax frame (thorax_axes at vc7). Lengths alone miss the clavicle's rest direction: a body
-// retargeted from CMU carries its clavicles turned ~25 degrees up and forward in every frame (the
-// source skeleton's clavicle bone points up and out where H-Anim's is level), which SIK's neutral
-// clavicle never reproduces, putting its shoulders ~10 cm off. Unchanged without the four joints.
-Skeleton place_shoulders(const JointTrack& truth, const Skeleton& skeleton) {
-  const std::array<const char*, 4> names = {"humanoid_root", "vc7", "l_shoulder", "r_shoulder"};
-  std::array<int, 4> t{}, s{};
-  for (int i = 0; i < 4; ++i) {
-    t[i] = truth.joint_index(names[i]);
-    s[i] = skeleton.find(names[i]);
-    if (t[i] < 0 || s[i] < 0) return skeleton;
+// A body frame named by four joints (from, to, left, right: frame_axes) with its origin at
+// `from`, and where a joint sits in it.
+struct BodyFrame {
+  std::array<std::string, 4> joints;
+
+  std::optional<Eigen::Matrix3d> axes(const std::array<Eigen::Vector3d, 4>& p) const {
+    return frame_axes(p[0], p[1], p[2], p[3]);
   }
-  std::array<std::array<std::vector<double>, 3>, 2> local;
-  for (const auto& p : truth.positions) {
-    const auto axes = thorax_axes(p[t[0]], p[t[1]], p[t[2]], p[t[3]]);
-    if (!axes) continue;
-    for (int side = 0; side < 2; ++side) {
-      const Eigen::Vector3d q = axes->transpose() * (p[t[2 + side]] - p[t[1]]);
+  // The median over the truth's frames of `joint`'s coordinates in this frame; nullopt when the
+  // truth lacks a joint or no frame has them all.
+  std::optional<Eigen::Vector3d> median_in_truth(const JointTrack& truth,
+                                                 const std::string& joint) const {
+    std::array<int, 5> t{};
+    for (int i = 0; i < 5; ++i) {
+      t[i] = truth.joint_index(i < 4 ? joints[i] : joint);
+      if (t[i] < 0) return std::nullopt;
+    }
+    std::array<std::vector<double>, 3> local;
+    for (const auto& p : truth.positions) {
+      const auto r = axes({p[t[0]], p[t[1]], p[t[2]], p[t[3]]});
+      const Eigen::Vector3d q = r ? Eigen::Vector3d(r->transpose() * (p[t[4]] - p[t[0]]))
+                                  : Eigen::Vector3d::Constant(NAN);
       if (!q.allFinite()) continue;
-      for (int k = 0; k < 3; ++k) local[side][k].push_back(q[k]);
+      for (int k = 0; k < 3; ++k) local[k].push_back(q[k]);
     }
+    if (local[0].empty()) return std::nullopt;
+    return Eigen::Vector3d(median(local[0]), median(local[1]), median(local[2]));
   }
-  if (local[0][0].empty() || local[1][0].empty()) return skeleton;
-  std::array<Eigen::Vector3d, 2> wanted;
-  for (int side = 0; side < 2; ++side) {
-    for (int k = 0; k < 3; ++k) wanted[side][k] = median(local[side][k]);
+  // The world point at `local` in this frame of the neutral centres; nullopt when degenerate.
+  std::optional<Eigen::Vector3d> in_skeleton(const Skeleton& skeleton,
+                                             const std::vector<Eigen::Vector3d>& centre,
+                                             const Eigen::Vector3d& local) const {
+    std::array<Eigen::Vector3d, 4> p;
+    for (int i = 0; i < 4; ++i) p[i] = centre[skeleton.require(joints[i])];
+    const auto r = axes(p);
+    if (!r) return std::nullopt;
+    return Eigen::Vector3d(p[0] + *r * local);
   }
-  std::vector<Eigen::Vector3d> centre;
-  for (const Joint& j : skeleton.joints()) centre.push_back(j.center);
-  // The shoulders span the frame's X, so moving them turns it: a few passes settle both.
-  for (int pass = 0; pass < 4; ++pass) {
-    const auto axes = thorax_axes(centre[s[0]], centre[s[1]], centre[s[2]], centre[s[3]]);
-    if (!axes) return skeleton;
-    for (int side = 0; side < 2; ++side) {
-      const Eigen::Vector3d shift = centre[s[1]] + *axes * wanted[side] - centre[s[2 + side]];
-      for (int j = 0; j < skeleton.size(); ++j) {
-        if (skeleton.is_descendant(j, s[2 + side])) centre[j] += shift;
-      }
-    }
+};
+
+void shift_subtree(const Skeleton& skeleton, int top, const Eigen::Vector3d& shift,
+                   std::vector<Eigen::Vector3d>& centre) {
+  for (int j = 0; j < skeleton.size(); ++j) {
+    if (skeleton.is_descendant(j, top)) centre[j] += shift;
   }
-  Skeleton placed;
+}
+
+// `skeleton` with its neutral joint centres moved to `centre`.
+Skeleton with_centres(const Skeleton& skeleton, const std::vector<Eigen::Vector3d>& centre) {
+  Skeleton moved;
   for (int j = 0; j < skeleton.size(); ++j) {
     Joint joint = skeleton[j];
     joint.center = centre[j];
-    placed.add(std::move(joint));
+    moved.add(std::move(joint));
   }
-  return placed;
+  return moved;
+}
+
+bool has_joints(const Skeleton& skeleton, std::initializer_list<const char*> names) {
+  return std::all_of(names.begin(), names.end(),
+                     [&](const char* n) { return skeleton.find(n) >= 0; });
+}
+
+// Lengths alone miss the rest shape of the trunk the motion carries (a body retargeted from CMU
+// keeps its clavicles turned ~25 degrees up and forward in every frame, its thorax curled
+// forward), which SIK's neutral spine and clavicles never reproduce: its shoulders were 10-15 cm
+// off. So vc7 moves to the truth's median position in the trunk frame (humanoid_root, Y to
+// skullbase, X across the hips), the shift spread evenly over the vertebrae below it with
+// skullbase kept; then each shoulder, with its arm, to the truth's median in the thorax frame
+// (vc7, Y from humanoid_root, X across the shoulders). Unchanged where the truth lacks a joint.
+Skeleton place_trunk(const JointTrack& truth, const Skeleton& skeleton) {
+  if (!has_joints(skeleton, {"humanoid_root", "vc7", "skullbase", "l_hip", "r_hip", "l_shoulder",
+                             "r_shoulder"})) {
+    return skeleton;
+  }
+  std::vector<Eigen::Vector3d> centre;
+  for (const Joint& j : skeleton.joints()) centre.push_back(j.center);
+  const int root = skeleton.require("humanoid_root"), vc7 = skeleton.require("vc7"),
+            skullbase = skeleton.require("skullbase");
+
+  const BodyFrame trunk{{"humanoid_root", "skullbase", "l_hip", "r_hip"}};
+  const auto vc7_local = trunk.median_in_truth(truth, "vc7");
+  const auto vc7_at = vc7_local ? trunk.in_skeleton(skeleton, centre, *vc7_local) : std::nullopt;
+  if (vc7_at) {
+    std::vector<int> path;
+    for (int j = vc7; j != root; j = skeleton[j].parent) path.push_back(j);
+    const Eigen::Vector3d shift = *vc7_at - centre[vc7];
+    for (int j : path) shift_subtree(skeleton, j, shift / static_cast<double>(path.size()), centre);
+    for (int c : skeleton.children(vc7)) {
+      if (skeleton.is_descendant(skullbase, c)) shift_subtree(skeleton, c, -shift, centre);
+    }
+  }
+
+  const BodyFrame thorax{{"vc7", "humanoid_root", "l_shoulder", "r_shoulder"}};
+  const std::array<const char*, 2> shoulders = {"l_shoulder", "r_shoulder"};
+  std::array<std::optional<Eigen::Vector3d>, 2> local;
+  for (int side = 0; side < 2; ++side) local[side] = thorax.median_in_truth(truth, shoulders[side]);
+  // The shoulders span the frame's X, so moving them turns it: a few passes settle both.
+  for (int pass = 0; pass < 4; ++pass) {
+    for (int side = 0; side < 2; ++side) {
+      const int j = skeleton.require(shoulders[side]);
+      const auto at =
+          local[side] ? thorax.in_skeleton(skeleton, centre, *local[side]) : std::nullopt;
+      if (at) shift_subtree(skeleton, j, *at - centre[j], centre);
+    }
+  }
+  return with_centres(skeleton, centre);
 }
 
 }  // namespace
@@ -159,7 +218,7 @@ Skeleton sik_humanoid_for_track(const JointTrack& truth) {
     joint.center = centre[j];
     fitted.add(std::move(joint));
   }
-  return place_shoulders(truth, fitted);
+  return place_trunk(truth, fitted);
 }
 
 TrackSummary track_dataset_sik(const std::filesystem::path& dataset,

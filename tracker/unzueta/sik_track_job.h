@@ -72,10 +72,12 @@ TrackSummary track_dataset_sik(const std::filesystem::path& dataset,
 // build_humanoid() at the truth's height (the median ratio of tracked bone lengths to the
 // canonical ones), then the bones between each tracked joint and its nearest tracked ancestor
 // scaled to their mean distance in `truth` (a bone shared by two such paths, e.g. the spine below
-// vc7 and a shoulder when only HE15 is tracked, takes the first path's factor). Then each
-// shoulder, with its arm, is moved to the truth's median shoulder position in the thorax frame
-// (origin vc7, Y from humanoid_root to vc7, X toward the left shoulder): a clavicle the motion
-// keeps turned (CMU clips retarget with it ~25 degrees up) belongs to the body SIK solves.
+// vc7 and a shoulder when only HE15 is tracked, takes the first path's factor). Then the trunk's
+// rest shape is taken from the truth: vc7 moved to its median position in the trunk frame
+// (humanoid_root, Y toward skullbase, X across the hips; the shift spread over the vertebrae
+// below, skullbase kept), each shoulder with its arm to its median in the thorax frame (vc7, Y
+// toward humanoid_root, X across the shoulders). A clavicle or thorax the motion keeps turned
+// (CMU clips retarget with the clavicles ~25 degrees up) belongs to the body SIK solves.
 Skeleton sik_humanoid_for_track(const JointTrack& truth);
 
 }  // namespace simcap
