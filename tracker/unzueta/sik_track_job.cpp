@@ -218,7 +218,11 @@ Skeleton sik_humanoid_for_track(const JointTrack& truth) {
     joint.center = centre[j];
     fitted.add(std::move(joint));
   }
-  return place_trunk(truth, fitted);
+  return fitted;
+}
+
+Skeleton sik_humanoid_with_truth_trunk(const JointTrack& truth) {
+  return place_trunk(truth, sik_humanoid_for_track(truth));
 }
 
 TrackSummary track_dataset_sik(const std::filesystem::path& dataset,
@@ -239,7 +243,7 @@ TrackSummary track_dataset_sik(const std::filesystem::path& dataset,
   const std::array<int, 2> wrist = {need("l_radiocarpal"), need("r_radiocarpal")};
   const std::array<int, 2> ankle = {need("l_talocrural"), need("r_talocrural")};
 
-  const Skeleton skeleton = sik_humanoid_for_track(truth);
+  const Skeleton skeleton = sik_humanoid_with_truth_trunk(truth);
   // A skull_tip target stands in for skullbase one neutral head height below it.
   const double head_drop = skullbase >= 0 ? 0.0
                                           : (skeleton[skeleton.require("skull_tip")].center -

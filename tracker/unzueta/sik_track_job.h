@@ -62,7 +62,7 @@ TrackSummary track_sik(const std::filesystem::path& dataset, const std::filesyst
 
 // Reads DATASET/gt/joints3d.csv; needs humanoid_root, skullbase (or skull_tip), l/r_radiocarpal
 // and l/r_talocrural. Solves every frame in order with SIK (limits and collisions on, floor
-// y = 0) on build_humanoid() refitted to the truth's segment lengths (sik_humanoid_for_track),
+// y = 0) on build_humanoid() refitted to the truth (sik_humanoid_with_truth_trunk),
 // after adding N(0, noise_sigma_m^2) to each coordinate of each end-effector (std::mt19937_64
 // seeded with `seed`, so a seed gives the same output). Writes OUT/joints3d.csv (HE15 joints) and
 // OUT/diagnostics/sik_humanoid.csv (the fitted humanoid's neutral joint centres).
@@ -72,12 +72,16 @@ TrackSummary track_dataset_sik(const std::filesystem::path& dataset,
 // build_humanoid() at the truth's height (the median ratio of tracked bone lengths to the
 // canonical ones), then the bones between each tracked joint and its nearest tracked ancestor
 // scaled to their mean distance in `truth` (a bone shared by two such paths, e.g. the spine below
-// vc7 and a shoulder when only HE15 is tracked, takes the first path's factor). Then the trunk's
-// rest shape is taken from the truth: vc7 moved to its median position in the trunk frame
-// (humanoid_root, Y toward skullbase, X across the hips; the shift spread over the vertebrae
-// below, skullbase kept), each shoulder with its arm to its median in the thorax frame (vc7, Y
-// toward humanoid_root, X across the shoulders). A clavicle or thorax the motion keeps turned
-// (CMU clips retarget with the clavicles ~25 degrees up) belongs to the body SIK solves.
+// vc7 and a shoulder when only HE15 is tracked, takes the first path's factor).
 Skeleton sik_humanoid_for_track(const JointTrack& truth);
+
+// sik_humanoid_for_track, then the trunk's rest shape taken from the truth: vc7 moved to its
+// median position in the trunk frame (humanoid_root, Y toward skullbase, X across the hips; the
+// shift spread over the vertebrae below, skullbase kept), each shoulder with its arm to its median
+// in the thorax frame (vc7, Y toward humanoid_root, X across the shoulders). A clavicle or thorax
+// the motion keeps turned (CMU clips retarget with the clavicles ~25 degrees up) belongs to the
+// body SIK solves. Used with the true end-effectors only: with tracked ones (unzueta_job.h) it
+// made the walk and the hop worse (UNZUETA.md, "SIK's floor").
+Skeleton sik_humanoid_with_truth_trunk(const JointTrack& truth);
 
 }  // namespace simcap

@@ -52,12 +52,14 @@ JointTrack write_truth(const std::filesystem::path& dataset, double height, doub
 TEST(SikTrackJob, SizesTheHumanoidFromTheTruth) {
   testing::TempDir tmp;
   const JointTrack truth = write_truth(tmp.path(), 1.62, 0.5);
-  const Skeleton fitted = sik_humanoid_for_track(truth);
+  const Skeleton sized = sik_humanoid_for_track(truth);
+  const Skeleton fitted = sik_humanoid_with_truth_trunk(truth);
   BodyParameters body;
   body.height = 1.62;
   const Skeleton expected = build_humanoid(body);
   ASSERT_EQ(fitted.size(), expected.size());
   for (int j = 0; j < fitted.size(); ++j) {
+    EXPECT_LT((sized[j].center - expected[j].center).norm(), 1e-6) << sized[j].name;
     // The walk's sway moves the medians of vc7 and the shoulders in the trunk by half a mm.
     EXPECT_LT((fitted[j].center - expected[j].center).norm(), 1e-3) << fitted[j].name;
   }
@@ -69,7 +71,7 @@ TEST(SikTrackJob, PlacesTheShouldersWhereTheTruthCarriesThem) {
   testing::TempDir tmp;
   const double shrug = 0.45;  // ~26 degrees
   const JointTrack truth = write_truth(tmp.path(), 1.75, 0.5, shrug);
-  const Skeleton fitted = sik_humanoid_for_track(truth);
+  const Skeleton fitted = sik_humanoid_with_truth_trunk(truth);
   BodyParameters body;
   body.height = 1.75;
   const Skeleton plain = build_humanoid(body);
@@ -119,7 +121,7 @@ TEST(SikTrackJob, CurlsTheSpineAsTheTruthCarriesIt) {
   testing::TempDir tmp;
   const double curl = 0.5;
   const JointTrack truth = write_truth(tmp.path(), 1.75, 0.5, 0.0, curl);
-  const Skeleton fitted = sik_humanoid_for_track(truth);
+  const Skeleton fitted = sik_humanoid_with_truth_trunk(truth);
   BodyParameters body;
   body.height = 1.75;
   const Skeleton plain = build_humanoid(body);
