@@ -109,7 +109,8 @@ StickPose MoschiniTracker::best_upright(const Observation& obs, const StickPose*
 }
 
 double MoschiniTracker::search_limbs(const IcpTargets& targets, StickPose& pose,
-                                     std::optional<double> cost) const {
+                                     std::optional<double> cost, const PoseRefiner* by) const {
+  const PoseRefiner& refiner = by ? *by : refiner_;
   struct Limb {
     std::array<int, 4> angles;  // -1: unused
     double mirror;              // sign of the abduction and twist: 1 on the left, -1 on the right
@@ -130,7 +131,7 @@ double MoschiniTracker::search_limbs(const IcpTargets& targets, StickPose& pose,
   static constexpr std::array<std::array<double, 4>, 4> legs = {
       {{0.0, 0.0, 0.0, 0.0}, {0.0, -0.4, 0.3, 0.0}, {0.0, 0.3, 0.2, 0.0}, {0.0, -0.2, 0.8, 0.0}}};
   const auto& ranges = model_.ranges();
-  double best = cost ? *cost : refiner_.cost(targets, pose);
+  double best = cost ? *cost : refiner.cost(targets, pose);
   for (const Limb& limb : limbs) {
     const StickPose base = pose;
     const auto configurations = limb.arm ? std::span<const std::array<double, 4>>(arms)
@@ -142,8 +143,8 @@ double MoschiniTracker::search_limbs(const IcpTargets& targets, StickPose& pose,
         const double sign = i == 0 || (limb.arm && i == 2) ? limb.mirror : 1.0;
         trial.theta[limb.angles[i]] = limit_angle(sign * angles[i], ranges[limb.angles[i]]);
       }
-      refiner_.refine(targets, trial);
-      const double c = refiner_.cost(targets, trial);
+      refiner.refine(targets, trial);
+      const double c = refiner.cost(targets, trial);
       if (c < best) best = c, pose = trial;
     }
   }
@@ -206,6 +207,14 @@ StickPose MoschiniTracker::fit_hypothesis(const Observation& obs, StickPose pose
   const IcpTargets targets = targets_of(obs);
   icp_.fit(targets, pose);
   search_limbs(targets, pose);
+  return pose;
+}
+
+StickPose MoschiniTracker::fit_hypothesis_to_silhouettes(const Observation& obs,
+                                                         StickPose pose) const {
+  const IcpTargets targets = targets_of(obs);
+  polisher_.refine(targets, pose);
+  search_limbs(targets, pose, {}, &polisher_);
   return pose;
 }
 

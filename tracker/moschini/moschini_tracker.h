@@ -129,6 +129,9 @@ class MoschiniTracker {
   // Fits `pose` to `obs` as recovery fits an upright hypothesis (the traversal, then each
   // limb restarted from typical configurations) without moving the tracker.
   StickPose fit_hypothesis(const Observation& obs, StickPose pose) const;
+  // The same by the silhouettes alone: the final refinement from `pose`, then each limb
+  // restarted from typical configurations, without the traversal and the centerline.
+  StickPose fit_hypothesis_to_silhouettes(const Observation& obs, StickPose pose) const;
 
   TrackStep step(const Observation& obs);
   int reinitializations() const { return reinitializations_; }
@@ -154,8 +157,9 @@ class MoschiniTracker {
   // across the body, back, raised) and keeps the refinement that scores best: far from the
   // data, a limb's refinement stays in whatever basin it starts in. Returns the cost of the
   // pose kept; `cost`, when known, is the cost of `pose` as given.
-  double search_limbs(const IcpTargets& targets, StickPose& pose,
-                      std::optional<double> cost = {}) const;
+  // `by`: the refinement that fits and scores each restart (the joint refinement unless given).
+  double search_limbs(const IcpTargets& targets, StickPose& pose, std::optional<double> cost = {},
+                      const PoseRefiner* by = nullptr) const;
   // Tries each left/right pair of limbs exchanged (the left leg's angles for the right leg's and
   // back) and keeps whichever fit the data favour: when the pair crosses (the left foot or knee,
   // hand or elbow, right of the right one in the torso's frame), and on every frame when
