@@ -55,6 +55,10 @@ Eigen::AlignedBox3d working_volume(const Dataset& ds) {
 
 // How many first frames --init auto measures the body on.
 constexpr int kStartFrames = 5;
+// The frame (counted from the first) at whose tracked pose --init auto fits the capsules and
+// the centerline's offsets again and from then on trusts the silhouettes, as --init gt does
+// from the first frame (MOSCHINI.md, "Trusting the silhouettes after the start").
+constexpr int kRefitFrame = 4;
 
 }  // namespace
 
@@ -108,6 +112,8 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
   topt.use_filter = options.filter == MotionFilter::ekf;
   topt.traversal = options.traversal;
   std::optional<MoschiniTracker> tracker;
+  // --init auto: the frame at which the tracker restarts with capsules fitted to its own pose.
+  std::optional<int> refit_frame;
   // Where the tracked body was last: the gate keeps that person's part of the silhouettes
   // when someone else is in view too (person_gate.h). It runs only when the capture has other
   // people (scene.yaml's actors, the capture's metadata like its room): alone, a person's hull
@@ -184,6 +190,8 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
     tracker.emplace(start.dims, surface, topt);
     tracker->start(start.pose);
     last_body = place(surface, model.geometry(start.pose));
+    // Alone in view only: with others about, the silhouettes hold their pixels too.
+    if (!others && static_cast<int>(frames.size()) > kRefitFrame) refit_frame = frames[kRefitFrame];
   }
 
   // Frames are observed in parallel; OpenCV's own worker threads inside each would only compete
@@ -229,6 +237,19 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
                    last_body = place(tracker->surface(), tracker->model().geometry(step.pose));
                    if (occlusion) occlusion->observe(*last_body, obs->silhouettes);
                    sink(ds, *obs, step, *tracker);
+                   if (obs->frame == refit_frame) {
+                     // The pose tracked from a right start is near enough the truth for the
+                     // capsules and the offsets that --init gt measures on its first frame.
+                     const StickModel& model = tracker->model();
+                     BodyDimensions dims = model.dimensions();
+                     dims.centerline_offset =
+                         measure_centerline_offsets(model, step.pose, obs->points);
+                     const BodySurface surface = fit_surface(
+                         model, step.pose, typical_surface(dims), obs->rays, obs->views);
+                     topt.trust_silhouettes = true;
+                     tracker.emplace(dims, surface, topt);
+                     tracker->start(step.pose);
+                   }
                    progress.advance();
                  }));
   progress.finish();
@@ -262,7 +283,8 @@ TrackSummary track_moschini(const fs::path& dataset, const fs::path& out,
       dataset, options, options.max_frames,
       [&](const Dataset& ds, const Observation& obs, const TrackStep& step,
           const MoschiniTracker& tracker) {
-        if (!dims) dims = tracker.model().dimensions(), surface = tracker.surface();
+        // The last body tracked with: --init auto measures it again after the start.
+        dims = tracker.model().dimensions(), surface = tracker.surface();
         track.add_frame(obs.frame, tracker.model().he15(step.pose));
         angles.add_frame(obs.frame, tracker.model().joint_rotations(step.pose));
         for (const CenterlinePoint& p : obs.centerline) {
