@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "tracker/moschini/body_surface.h"
 #include "tracker/moschini/moschini_tracker.h"
 
 namespace simcap::tracker {
@@ -28,6 +29,15 @@ struct AutoStartOptions {
   // through the first frames explains the silhouettes best is kept.
   int turns = 4;
 };
+
+// The body as --init gt measures it on its first frame, at `pose` on `obs`: the capsules fitted
+// to the silhouettes and where the hull's centerline runs off the trunk's and head's sticks.
+struct FittedBody {
+  BodyDimensions dims;
+  BodySurface surface;
+};
+FittedBody fit_body(const BodyDimensions& dims, const TrackerOptions& options,
+                    const StickPose& pose, const Observation& obs);
 
 // `first`: observations of the first frames (at least one with a body in its hull).
 // `options`: the tracker's; the search refines at its final refinement's sampling.

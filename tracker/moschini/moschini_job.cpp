@@ -152,9 +152,9 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
       occlusion->observe(place(typical_surface(dims), plain.geometry(start)), first.silhouettes);
       perception.widen(first, *occlusion);
     }
-    dims.centerline_offset = measure_centerline_offsets(plain, start, first.points);
-    const BodySurface surface =
-        fit_surface(plain, start, typical_surface(dims), first.rays, first.views);
+    const FittedBody body = fit_body(dims, topt, start, first);
+    dims = body.dims;
+    const BodySurface& surface = body.surface;
     if (popt.colours) {
       // Background subtraction shows everyone: the person's colours are learned in the views
       // where no one else touches them, and the others' from the pixels the gate dropped.
@@ -240,14 +240,10 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
                    if (obs->frame == refit_frame) {
                      // The pose tracked from a right start is near enough the truth for the
                      // capsules and the offsets that --init gt measures on its first frame.
-                     const StickModel& model = tracker->model();
-                     BodyDimensions dims = model.dimensions();
-                     dims.centerline_offset =
-                         measure_centerline_offsets(model, step.pose, obs->points);
-                     const BodySurface surface = fit_surface(
-                         model, step.pose, typical_surface(dims), obs->rays, obs->views);
+                     const FittedBody body =
+                         fit_body(tracker->model().dimensions(), topt, step.pose, *obs);
                      topt.trust_silhouettes = true;
-                     tracker.emplace(dims, surface, topt);
+                     tracker.emplace(body.dims, body.surface, topt);
                      tracker->start(step.pose);
                    }
                    progress.advance();
