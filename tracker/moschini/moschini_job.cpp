@@ -57,7 +57,7 @@ Eigen::AlignedBox3d working_volume(const Dataset& ds) {
 constexpr int kStartFrames = 5;
 // The frame (counted from the first) at whose tracked pose --init auto fits the capsules and
 // the centerline's offsets again and from then on trusts the silhouettes, as --init gt does
-// from the first frame (MOSCHINI.md, "Trusting the silhouettes after the start").
+// from the first frame (MOSCHINI.md, "`--init auto` now"): 3 and 5 did worse on main's start.
 constexpr int kRefitFrame = 4;
 
 }  // namespace
@@ -170,7 +170,7 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
   } else {
     // Assumption: in the first frames the person stands upright on the floor (auto_start.h).
     // The capsules are fitted at a guessed first pose: their silhouette cost cannot overrule
-    // the centerline (TrackerOptions::trust_silhouettes).
+    // the centerline (TrackerOptions::trust_silhouettes) until the refit at kRefitFrame.
     topt.trust_silhouettes = false;
     std::vector<Observation> first;
     for (int i = 0; i < std::min<int>(kStartFrames, static_cast<int>(frames.size())); ++i) {

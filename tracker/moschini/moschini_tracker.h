@@ -83,11 +83,12 @@ struct TrackerOptions {
     o.iterations = 2;
     return o;
   }();
-  // The capsules were fitted at a known first pose (--init gt), so their silhouette cost may
-  // overrule the centerline: the silhouette start runs, and a recovery must lower that cost
-  // too. Fitted at a guessed pose (--init auto) they explain the silhouettes worse at the right
-  // pose than at the guess, and both kept wrong starts (motion suite, --init auto: 36.6 mm
-  // without them, 47.9 with the silhouette start, 47.4 with the recovery's test alone).
+  // The capsules were fitted at a known pose (--init gt's first frame, --init auto's tracked
+  // pose of its fifth), so their silhouette cost may overrule the centerline: the silhouette
+  // start runs, and a recovery must lower that cost too. Fitted at a guessed pose (--init
+  // auto's first frame) they explain the silhouettes worse at the right pose than at the guess,
+  // and both kept wrong starts (motion suite, --init auto: 36.6 mm without them, 47.9 with the
+  // silhouette start from frame 0, 47.4 with the recovery's test alone).
   bool trust_silhouettes = true;
   FilterNoise filter;
   RecoveryOptions recovery;
