@@ -22,6 +22,7 @@ struct IkEvalArgs {
   bool no_limits = false;
   bool anatomical_hinges = false;
   bool known_orientations = false;
+  bool middle_targets = false;
   int frames = 0;
 };
 
@@ -57,7 +58,8 @@ IkEvalResult evaluate_solver(const IkEvalArgs& a, const IkClip& clip, const std:
   const auto solver = make_ik_solver(method, clip.body, settings);
   const std::vector<int> joints = table10_joints(clip.body);
   const IkEvalResult r =
-      evaluate_ik(*solver, clip.motion, joints, table10_height(clip.body), a.known_orientations);
+      evaluate_ik(*solver, clip.motion, joints, table10_height(clip.body),
+                  {.known_orientations = a.known_orientations, .middle_targets = a.middle_targets});
   const Skeleton& sk = clip.body.skeleton();
 
   CsvWriter frames(out / "frame_errors.csv", {"frame", "position_error", "orientation_error"});
@@ -84,6 +86,7 @@ IkEvalResult evaluate_solver(const IkEvalArgs& a, const IkClip& clip, const std:
                             {"limits", !a.no_limits},
                             {"hinge_axes", a.anatomical_hinges ? "anatomical" : "from the clip"},
                             {"known_orientations", a.known_orientations},
+                            {"middle_targets", a.middle_targets},
                             {"position_error", r.position_error},
                             {"orientation_error", r.orientation_error},
                             {"ms_per_frame", r.ms_per_frame}};
@@ -207,6 +210,9 @@ void add_ik_eval(CLI::App& app, Action& action) {
   cmd->add_flag("--known-orientations", args.known_orientations,
                 "Also give the true pelvis and head orientations (SIK: Alg. 10-11 spine twist; "
                 "not Table 10's setting; the baselines ignore them)");
+  cmd->add_flag("--middle-targets", args.middle_targets,
+                "Also give the true elbows and knees (SIK swivels each limb toward them; not "
+                "Table 10's setting; the baselines ignore them)");
   cmd->add_option("--frames", args.frames, "Evaluate only the first N frames (default: all)")
       ->check(non_negative_number());
   cmd->footer(

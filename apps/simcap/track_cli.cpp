@@ -178,6 +178,9 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
          "of its skin blob within this reach of its shoulder, a fraction of the person's height "
          "(0.44: shoulder to fingertip; default 0: off)")
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_flag("--middle-targets", o.sik.middle_targets,
+                "sik --effectors gt: also give SIK the truth's elbows and knees (each limb swivels "
+                "toward them)");
   cmd->add_option("--sik-noise", o.sik.noise_sigma_m,
                   "sik: standard deviation of the noise added to the end-effectors, metres")
       ->check(CLI::Range(0.0, 1.0))

@@ -136,7 +136,7 @@ const std::vector<Table10Column>& thesis_table10() {
 }
 
 IkEvalResult evaluate_ik(IkSolver& solver, const Motion& truth, const std::vector<int>& joints,
-                         double height, bool known_orientations) {
+                         double height, IkEvalExtras extras) {
   const SikBody& body = solver.body();
   if (joints.empty() || !(height > 0.0)) throw Error("ik-eval: no joints to score");
   IkEvalResult r;
@@ -152,9 +152,15 @@ IkEvalResult evaluate_ik(IkSolver& solver, const Motion& truth, const std::vecto
     }
     body.forward(pose, true_rotation, true_position);
     SikTargets targets = body.targets(true_position);
-    if (known_orientations) {
+    if (extras.known_orientations) {
       targets.pelvis_orientation = true_rotation[body.root()];
       targets.head_orientation = true_rotation[body.head()];
+    }
+    if (extras.middle_targets) {
+      for (int side : {kLeft, kRight}) {
+        targets.elbow[side] = true_position[body.arm(side).b];
+        targets.knee[side] = true_position[body.leg(side).b];
+      }
     }
     const auto start = std::chrono::steady_clock::now();
     const Pose& solved = solver.solve(targets);

@@ -73,12 +73,17 @@ struct IkEvalResult {
   double position_error = 0.0, orientation_error = 0.0, ms_per_frame = 0.0;
 };
 
+// What the targets carry besides Table 10's six positions (SIK uses both; the baselines ignore
+// them): the true pelvis and head orientations (Alg. 10-11), the true elbows and knees.
+struct IkEvalExtras {
+  bool known_orientations = false;
+  bool middle_targets = false;
+};
+
 // Runs `solver` (reset first) on the end-effectors of every frame of `truth`, a motion of the
 // solver's own skeleton. The orientation of a joint is compared relative to its parent (the
-// root's in the world) as the magnitude of the exponential map of R_true^-1 R_solved. With
-// `known_orientations` the targets also carry the true pelvis and head orientations (SIK's
-// Alg. 10-11 use them; the baselines ignore them).
+// root's in the world) as the magnitude of the exponential map of R_true^-1 R_solved.
 IkEvalResult evaluate_ik(IkSolver& solver, const Motion& truth, const std::vector<int>& joints,
-                         double height, bool known_orientations = false);
+                         double height, IkEvalExtras extras = {});
 
 }  // namespace simcap

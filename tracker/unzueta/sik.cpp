@@ -36,11 +36,12 @@ const Pose& SikSolver::solve(const SikTargets& targets) {
     spine_.twist_to_head(*targets.head_orientation, options_.limits, pose_);
   body_.forward(pose_, world_.rotation, world_.position);
   for (int side : {kLeft, kRight}) {
-    limbs_.place_leg(side, targets.ankle[side], options_.limits, pose_, world_);
+    limbs_.place_leg(side, targets.ankle[side], targets.knee[side], options_.limits, pose_, world_);
   }
   for (int side : {kLeft, kRight}) {
     limbs_.place_clavicle(side, targets.wrist[side], options_.limits, pose_, world_);
-    limbs_.place_arm(side, targets.wrist[side], options_.limits, pose_, world_);
+    limbs_.place_arm(side, targets.wrist[side], targets.elbow[side], options_.limits, pose_,
+                     world_);
   }
   return pose_;
 }

@@ -24,6 +24,10 @@ struct SikTargets {
   // World orientations of humanoid_root and skullbase when measured (thesis Alg. 10-11): the
   // pelvis then replaces the estimate of §4.2 and the spine is twisted to the head's.
   std::optional<Eigen::Quaterniond> pelvis_orientation, head_orientation;
+  // Elbow and knee centres when measured (the optional middle targets; the thesis tracks
+  // none): the limb then swivels about its root-to-end line until the middle joint lies in the
+  // plane of the root, the end and this point, on its side. The end target keeps priority.
+  std::array<std::optional<Eigen::Vector3d>, 2> elbow, knee;
 };
 
 // A two-bone limb A-B-C (shoulder-elbow-wrist or hip-knee-ankle).

@@ -169,12 +169,38 @@ void SikLimbSolver::aim_from_neutral(const SikLimb& limb, const Geometry& g,
   update(limb, pose, world);
 }
 
+void SikLimbSolver::follow_middle(const SikLimb& limb, const Geometry& g,
+                                  const Eigen::Vector3d& target, const Eigen::Vector3d& middle,
+                                  bool limits, Pose& pose, SikWorld& world) const {
+  const Eigen::Vector3d a = world.position[limb.a];
+  const Eigen::Vector3d line = world.position[limb.c] - a;
+  if (line.norm() < kTiny) return;
+  const Eigen::Vector3d n = line.normalized();
+  const Eigen::Vector3d ab = world.position[limb.b] - a, am = middle - a;
+  // A stretched limb or a middle target on the line has no swivel to follow.
+  if ((ab - ab.dot(n) * n).norm() < kTiny || (am - am.dot(n) * n).norm() < kTiny) return;
+  turn(limb.a, Eigen::Quaterniond(Eigen::AngleAxisd(angle_about(ab, am, n), n)), pose, world);
+  if (!limits) {
+    update(limb, pose, world);
+    return;
+  }
+  const Eigen::Quaterniond wanted = pose.rotations[limb.a];
+  pose.rotations[limb.a] = limits_.clamp(limb.a, wanted);
+  update(limb, pose, world);
+  if (pose.rotations[limb.a].angularDistance(wanted) > kTiny) {
+    bend_toward(limb, g, target, limits, pose, world);
+  }
+}
+
 void SikLimbSolver::place_limb(const SikLimb& limb, const Geometry& g, int side, bool is_arm,
-                               const Eigen::Vector3d& target, bool limits, Pose& pose,
-                               SikWorld& world) const {
+                               const Eigen::Vector3d& target,
+                               const std::optional<Eigen::Vector3d>& middle, bool limits,
+                               Pose& pose, SikWorld& world) const {
   aim_from_neutral(limb, g, target, limits, pose, world);
-  if (is_arm && collider_) clear_elbow(limb, side, target, limits, pose, world);
+  // A measured elbow is outside the torso: §4.6.1's swivel away from it would only fight it.
+  if (is_arm && collider_ && !middle) clear_elbow(limb, side, target, limits, pose, world);
   bend_toward(limb, g, target, limits, pose, world);
+  if (middle) follow_middle(limb, g, target, *middle, limits, pose, world);
   if (!collider_) return;
   if (is_arm) {
     clear_wrist(limb, side, limits, pose, world);
@@ -194,6 +220,7 @@ void SikLimbSolver::place_limb(const SikLimb& limb, const Geometry& g, int side,
     const Eigen::Vector3d lifted = world.position[limb.c] + Eigen::Vector3d(0.0, depth, 0.0);
     aim_from_neutral(limb, g, lifted, false, pose, world);
     bend_toward(limb, g, lifted, false, pose, world);
+    if (middle) follow_middle(limb, g, lifted, *middle, false, pose, world);
     level_foot(limb, pose, world);
   }
 }
@@ -254,14 +281,16 @@ void SikLimbSolver::clear_wrist(const SikLimb& limb, int side, bool limits, Pose
   }
 }
 
-void SikLimbSolver::place_arm(int side, const Eigen::Vector3d& target, bool limits, Pose& pose,
+void SikLimbSolver::place_arm(int side, const Eigen::Vector3d& target,
+                              const std::optional<Eigen::Vector3d>& middle, bool limits, Pose& pose,
                               SikWorld& world) const {
-  place_limb(body_.arm(side), arm_[side], side, true, target, limits, pose, world);
+  place_limb(body_.arm(side), arm_[side], side, true, target, middle, limits, pose, world);
 }
 
-void SikLimbSolver::place_leg(int side, const Eigen::Vector3d& target, bool limits, Pose& pose,
+void SikLimbSolver::place_leg(int side, const Eigen::Vector3d& target,
+                              const std::optional<Eigen::Vector3d>& middle, bool limits, Pose& pose,
                               SikWorld& world) const {
-  place_limb(body_.leg(side), leg_[side], side, false, target, limits, pose, world);
+  place_limb(body_.leg(side), leg_[side], side, false, target, middle, limits, pose, world);
 }
 
 void SikLimbSolver::place_clavicle(int side, const Eigen::Vector3d& wrist_target, bool limits,

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "models/pose.h"
@@ -31,10 +32,13 @@ class SikLimbSolver {
   // Alg. 13 for an arm or a leg, starting from the neutral stretched limb: the end joint on the
   // target when it is reachable within the limits, otherwise as near as the method gets. Needs
   // world entries of every joint above the limb; updates those of A, B and C. With collisions, a
-  // leg's ankle is also turned to keep the foot level (see place_limb).
-  void place_arm(int side, const Eigen::Vector3d& target, bool limits, Pose& pose,
+  // leg's ankle is also turned to keep the foot level (see place_limb). With a `middle` target
+  // (elbow or knee) the limb then swivels toward it (follow_middle).
+  void place_arm(int side, const Eigen::Vector3d& target,
+                 const std::optional<Eigen::Vector3d>& middle, bool limits, Pose& pose,
                  SikWorld& world) const;
-  void place_leg(int side, const Eigen::Vector3d& target, bool limits, Pose& pose,
+  void place_leg(int side, const Eigen::Vector3d& target,
+                 const std::optional<Eigen::Vector3d>& middle, bool limits, Pose& pose,
                  SikWorld& world) const;
 
  private:
@@ -47,7 +51,12 @@ class SikLimbSolver {
   };
   Geometry geometry(const SikLimb& limb) const;
   void place_limb(const SikLimb& limb, const Geometry& g, int side, bool is_arm,
-                  const Eigen::Vector3d& target, bool limits, Pose& pose, SikWorld& world) const;
+                  const Eigen::Vector3d& target, const std::optional<Eigen::Vector3d>& middle,
+                  bool limits, Pose& pose, SikWorld& world) const;
+  // Turns A about the line from A to C (C stays put) so that B lies in the half-plane from that
+  // line through `middle`; within A's limits, then B re-bent toward `target` if they moved C.
+  void follow_middle(const SikLimb& limb, const Geometry& g, const Eigen::Vector3d& target,
+                     const Eigen::Vector3d& middle, bool limits, Pose& pose, SikWorld& world) const;
   double flexion_for_reach(const SikLimb& limb, const Geometry& g, double reach, bool limits) const;
   Eigen::Quaterniond aim(const Geometry& g, double flexion, const Eigen::Vector3d& direction) const;
   // Lines 1-6: the flexion the distance needs, A aimed at the target, both within the limits.

@@ -242,6 +242,11 @@ TrackSummary track_dataset_sik(const std::filesystem::path& dataset,
   if (head < 0) throw_input_error(gt, 0, "joint", "SIK needs the joint 'skullbase' or 'skull_tip'");
   const std::array<int, 2> wrist = {need("l_radiocarpal"), need("r_radiocarpal")};
   const std::array<int, 2> ankle = {need("l_talocrural"), need("r_talocrural")};
+  std::array<int, 2> elbow = {-1, -1}, knee = {-1, -1};
+  if (options.middle_targets) {
+    elbow = {need("l_elbow"), need("r_elbow")};
+    knee = {need("l_knee"), need("r_knee")};
+  }
 
   const Skeleton skeleton = sik_humanoid_with_truth_trunk(truth);
   // A skull_tip target stands in for skullbase one neutral head height below it.
@@ -285,6 +290,11 @@ TrackSummary track_dataset_sik(const std::filesystem::path& dataset,
     targets.head = noisy(p[head]);
     for (int side : {kLeft, kRight}) targets.wrist[side] = noisy(p[wrist[side]]);
     for (int side : {kLeft, kRight}) targets.ankle[side] = noisy(p[ankle[side]]);
+    for (int side : {kLeft, kRight}) {
+      if (elbow[side] >= 0 && p[elbow[side]].allFinite())
+        targets.elbow[side] = noisy(p[elbow[side]]);
+      if (knee[side] >= 0 && p[knee[side]].allFinite()) targets.knee[side] = noisy(p[knee[side]]);
+    }
     if (head_drop > 0.0) {
       targets.head -= head_drop * (targets.head - targets.pelvis).normalized();
     }

@@ -33,6 +33,8 @@ struct SikTrackOptions {
   EffectorSource effectors = EffectorSource::gt;
   double noise_sigma_m = 0.0;  // gt
   std::uint64_t seed = 1;      // gt: seed of that noise
+  // gt: also the truth's elbows and knees as SIK's optional middle targets (with the same noise).
+  bool middle_targets = false;
   // From pixels: the first frame's ROIs and body from the ground truth (gt) or the calibration
   // posture (automatic); which silhouettes the pelvis comes from; the camera of depth and mono.
   tracker::InitMethod init = tracker::InitMethod::automatic;
@@ -64,7 +66,8 @@ TrackSummary track_sik(const std::filesystem::path& dataset, const std::filesyst
 // and l/r_talocrural. Solves every frame in order with SIK (limits and collisions on, floor
 // y = 0) on build_humanoid() refitted to the truth (sik_humanoid_with_truth_trunk),
 // after adding N(0, noise_sigma_m^2) to each coordinate of each end-effector (std::mt19937_64
-// seeded with `seed`, so a seed gives the same output). Writes OUT/joints3d.csv (HE15 joints) and
+// seeded with `seed`, so a seed gives the same output); with middle_targets also l/r_elbow and
+// l/r_knee, as SikTargets::elbow and knee. Writes OUT/joints3d.csv (HE15 joints) and
 // OUT/diagnostics/sik_humanoid.csv (the fitted humanoid's neutral joint centres).
 TrackSummary track_dataset_sik(const std::filesystem::path& dataset,
                                const std::filesystem::path& out, const SikTrackOptions& options);

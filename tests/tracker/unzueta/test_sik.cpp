@@ -66,9 +66,9 @@ Eigen::Vector3d place(const SikBody& body, const SikLimits& limits, bool arm, in
   SikWorld world;
   body.forward(pose, world.rotation, world.position);
   if (arm) {
-    solver.place_arm(side, target, use_limits, pose, world);
+    solver.place_arm(side, target, std::nullopt, use_limits, pose, world);
   } else {
-    solver.place_leg(side, target, use_limits, pose, world);
+    solver.place_leg(side, target, std::nullopt, use_limits, pose, world);
   }
   for (int j = 0; j < body.size(); ++j) {
     EXPECT_LT(limits.excess(j, pose.rotations[j]), use_limits ? 1e-9 : INFINITY);
@@ -145,6 +145,94 @@ TEST_F(SikTest, UnreachableTargetsAreApproachedAlongTheLine) {
       }
     }
   }
+}
+
+TEST_F(SikTest, MiddleTargetsPlaceElbowsAndKneesExactly) {
+  // A limb of fixed bone lengths bent to a given reach is a rigid triangle: the end target fixes
+  // the flexion and the middle target the swivel about the root-to-end line, so both land on the
+  // truth -- for any swivel without limits, and within the limits for poses inside them.
+  const SikLimits limits(body);
+  const SikLimbSolver solver(body, limits, nullptr);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (bool use_limits : {false, true}) {
+    int checked = 0;
+    for (int i = 0; i < 200; ++i) {
+      Pose pose = Pose::neutral(skeleton);
+      for (int side : {kLeft, kRight}) {
+        const double lateral = side == kLeft ? 1.0 : -1.0;
+        const SikLimb& arm = body.arm(side);
+        const double roll = use_limits ? 0.6 * (unit(rng) - 0.5) : 2 * kPi * unit(rng);
+        pose.rotations[arm.a] =
+            Eigen::AngleAxisd(-unit(rng) * 1.5, Eigen::Vector3d::UnitX()) *
+            Eigen::AngleAxisd(lateral * unit(rng) * 0.8, Eigen::Vector3d::UnitZ()) *
+            Eigen::AngleAxisd(roll, body.segment_direction(arm.a));  // the swivel
+        pose.rotations[arm.b] = Eigen::AngleAxisd(0.2 + unit(rng) * 1.6, limits[arm.b].pole);
+        const SikLimb& leg = body.leg(side);
+        const double turn = use_limits ? 0.4 * (unit(rng) - 0.5) : 2 * kPi * unit(rng);
+        pose.rotations[leg.a] = Eigen::AngleAxisd(-unit(rng) * 1.2, Eigen::Vector3d::UnitX()) *
+                                Eigen::AngleAxisd(turn, body.segment_direction(leg.a));
+        pose.rotations[leg.b] = Eigen::AngleAxisd(0.2 + unit(rng) * 1.5, limits[leg.b].pole);
+      }
+      const World posed = forward(body, pose);
+      if (use_limits) {
+        bool inside = true;
+        for (int j = 0; j < body.size(); ++j)
+          inside = inside && limits.excess(j, pose.rotations[j]) == 0.0;
+        if (!inside) continue;
+      }
+      ++checked;
+      Pose solved = Pose::neutral(skeleton);
+      SikWorld world;
+      body.forward(solved, world.rotation, world.position);
+      for (int side : {kLeft, kRight}) {
+        const SikLimb& arm = body.arm(side);
+        const SikLimb& leg = body.leg(side);
+        solver.place_arm(side, posed.position[arm.c], posed.position[arm.b], use_limits, solved,
+                         world);
+        solver.place_leg(side, posed.position[leg.c], posed.position[leg.b], use_limits, solved,
+                         world);
+      }
+      const World w = forward(body, solved);
+      for (int side : {kLeft, kRight}) {
+        for (const SikLimb* limb : {&body.arm(side), &body.leg(side)}) {
+          EXPECT_LT((w.position[limb->b] - posed.position[limb->b]).norm(), 1e-6) << i;
+          EXPECT_LT((w.position[limb->c] - posed.position[limb->c]).norm(), 1e-6) << i;
+        }
+      }
+    }
+    EXPECT_GT(checked, 50) << "limits " << use_limits;
+  }
+}
+
+TEST_F(SikTest, MiddleTargetsOnlySwivel) {
+  // A middle target off the limb's plane swivels the limb toward it, the end stays on its target,
+  // and a target in line with the root and the end changes nothing.
+  const SikLimits limits(body);
+  const SikLimbSolver solver(body, limits, nullptr);
+  const SikLimb& leg = body.leg(kLeft);
+  const auto [thigh, calf] = bones(leg);
+  const Eigen::Vector3d hip = neutral.position[leg.a];
+  const Eigen::Vector3d ankle = hip + Eigen::Vector3d(0.0, -0.8 * (thigh + calf), 0.0);
+  auto knee_for = [&](const std::optional<Eigen::Vector3d>& middle) {
+    Pose pose = Pose::neutral(skeleton);
+    SikWorld world;
+    body.forward(pose, world.rotation, world.position);
+    solver.place_leg(kLeft, ankle, middle, false, pose, world);
+    EXPECT_LT((world.position[leg.c] - ankle).norm(), 1e-9);
+    return world.position[leg.b];
+  };
+  // The hip-ankle line is vertical: a knee's offset from it is its horizontal offset from the hip.
+  auto off_line = [&](const Eigen::Vector3d& p) {
+    return Eigen::Vector3d(p.x() - hip.x(), 0.0, p.z() - hip.z());
+  };
+  const Eigen::Vector3d free = knee_for(std::nullopt);
+  EXPECT_GT(off_line(free).z(), 0.05);  // the knee bends forward
+  EXPECT_LT((knee_for(0.5 * (hip + ankle)) - free).norm(), 1e-9);
+  const Eigen::Vector3d out = knee_for(0.5 * (hip + ankle) + Eigen::Vector3d(1.0, 0.0, 0.0));
+  EXPECT_NEAR(off_line(out).norm(), off_line(free).norm(), 1e-9);  // a turn about the line
+  EXPECT_NEAR(off_line(out).normalized().x(), 1.0, 1e-9);          // toward the target
+  EXPECT_NEAR(out.y(), free.y(), 1e-9);
 }
 
 TEST_F(SikTest, ClavicleTurnsOnlyWhenTheArmCannotReach) {
