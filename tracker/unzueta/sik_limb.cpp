@@ -17,6 +17,8 @@ constexpr double kSwivelGain = 1.0;
 // A foot this little below the floor counts as on it (the lift converges geometrically).
 constexpr double kFloorTolerance = 1e-4;
 constexpr double kTiny = 1e-9;
+// A swivel toward a middle target that leaves the limits is cut to within 2^-30 of their edge.
+constexpr int kSwivelBisections = 30;
 
 double wrap(double a) {
   return std::remainder(a, 2 * std::numbers::pi);
@@ -169,9 +171,8 @@ void SikLimbSolver::aim_from_neutral(const SikLimb& limb, const Geometry& g,
   update(limb, pose, world);
 }
 
-void SikLimbSolver::follow_middle(const SikLimb& limb, const Geometry& g,
-                                  const Eigen::Vector3d& target, const Eigen::Vector3d& middle,
-                                  bool limits, Pose& pose, SikWorld& world) const {
+void SikLimbSolver::follow_middle(const SikLimb& limb, const Eigen::Vector3d& middle, bool limits,
+                                  Pose& pose, SikWorld& world) const {
   const Eigen::Vector3d a = world.position[limb.a];
   const Eigen::Vector3d line = world.position[limb.c] - a;
   if (line.norm() < kTiny) return;
@@ -179,17 +180,28 @@ void SikLimbSolver::follow_middle(const SikLimb& limb, const Geometry& g,
   const Eigen::Vector3d ab = world.position[limb.b] - a, am = middle - a;
   // A stretched limb or a middle target on the line has no swivel to follow.
   if ((ab - ab.dot(n) * n).norm() < kTiny || (am - am.dot(n) * n).norm() < kTiny) return;
-  turn(limb.a, Eigen::Quaterniond(Eigen::AngleAxisd(angle_about(ab, am, n), n)), pose, world);
-  if (!limits) {
-    update(limb, pose, world);
-    return;
+  const double swivel = angle_about(ab, am, n);
+  const Eigen::Quaterniond start = pose.rotations[limb.a];
+  auto swivelled = [&](double t) {
+    turn(limb.a, Eigen::Quaterniond(Eigen::AngleAxisd(t * swivel, n)), pose, world);
+    const Eigen::Quaterniond q = pose.rotations[limb.a];
+    pose.rotations[limb.a] = start;
+    return q;
+  };
+  // Within the limits, the largest share of the swivel whose way there stays inside (A is inside
+  // at the start): clamping A instead would move the end off its target.
+  const double allowed = limits_.excess(limb.a, start) + kTiny;
+  double t = 1.0;
+  if (limits && limits_.excess(limb.a, swivelled(1.0)) > allowed) {
+    double inside = 0.0, outside = 1.0;
+    for (int i = 0; i < kSwivelBisections; ++i) {
+      const double mid = 0.5 * (inside + outside);
+      (limits_.excess(limb.a, swivelled(mid)) > allowed ? outside : inside) = mid;
+    }
+    t = inside;
   }
-  const Eigen::Quaterniond wanted = pose.rotations[limb.a];
-  pose.rotations[limb.a] = limits_.clamp(limb.a, wanted);
+  pose.rotations[limb.a] = swivelled(t);
   update(limb, pose, world);
-  if (pose.rotations[limb.a].angularDistance(wanted) > kTiny) {
-    bend_toward(limb, g, target, limits, pose, world);
-  }
 }
 
 void SikLimbSolver::place_limb(const SikLimb& limb, const Geometry& g, int side, bool is_arm,
@@ -200,7 +212,7 @@ void SikLimbSolver::place_limb(const SikLimb& limb, const Geometry& g, int side,
   // A measured elbow is outside the torso: §4.6.1's swivel away from it would only fight it.
   if (is_arm && collider_ && !middle) clear_elbow(limb, side, target, limits, pose, world);
   bend_toward(limb, g, target, limits, pose, world);
-  if (middle) follow_middle(limb, g, target, *middle, limits, pose, world);
+  if (middle) follow_middle(limb, *middle, limits, pose, world);
   if (!collider_) return;
   if (is_arm) {
     clear_wrist(limb, side, limits, pose, world);
@@ -220,7 +232,7 @@ void SikLimbSolver::place_limb(const SikLimb& limb, const Geometry& g, int side,
     const Eigen::Vector3d lifted = world.position[limb.c] + Eigen::Vector3d(0.0, depth, 0.0);
     aim_from_neutral(limb, g, lifted, false, pose, world);
     bend_toward(limb, g, lifted, false, pose, world);
-    if (middle) follow_middle(limb, g, lifted, *middle, false, pose, world);
+    if (middle) follow_middle(limb, *middle, false, pose, world);
     level_foot(limb, pose, world);
   }
 }

@@ -54,9 +54,9 @@ class SikLimbSolver {
                   const Eigen::Vector3d& target, const std::optional<Eigen::Vector3d>& middle,
                   bool limits, Pose& pose, SikWorld& world) const;
   // Turns A about the line from A to C (C stays put) so that B lies in the half-plane from that
-  // line through `middle`; within A's limits, then B re-bent toward `target` if they moved C.
-  void follow_middle(const SikLimb& limb, const Geometry& g, const Eigen::Vector3d& target,
-                     const Eigen::Vector3d& middle, bool limits, Pose& pose, SikWorld& world) const;
+  // line through `middle`; with limits, only as far as A stays within them.
+  void follow_middle(const SikLimb& limb, const Eigen::Vector3d& middle, bool limits, Pose& pose,
+                     SikWorld& world) const;
   double flexion_for_reach(const SikLimb& limb, const Geometry& g, double reach, bool limits) const;
   Eigen::Quaterniond aim(const Geometry& g, double flexion, const Eigen::Vector3d& direction) const;
   // Lines 1-6: the flexion the distance needs, A aimed at the target, both within the limits.
