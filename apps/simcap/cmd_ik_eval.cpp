@@ -189,7 +189,8 @@ void add_ik_eval(CLI::App& app, Action& action) {
   methods.push_back("all");
   cmd->add_option("--method,--solver", args.method,
                   "Solver: sik, ccd, pinv (pseudoinverse), dls, dls-svd, sdls (selectively "
-                  "damped least squares), or all (Table 10 side by side, one subfolder each)")
+                  "damped least squares), tgbsik (SIK with the swivel of least shoulder and hip "
+                  "rotation), or all (Table 10 side by side, one subfolder each)")
       ->check(CLI::IsMember(methods))
       ->capture_default_str();
   cmd->add_option("--pelvis-weights", args.pelvis_weights,

@@ -94,10 +94,11 @@ IkClip load_ik_clip(const std::filesystem::path& bvh, bool identify_hinges, int 
 
 std::unique_ptr<IkSolver> make_ik_solver(std::string_view method, const SikBody& body,
                                          const IkSolverSettings& settings) {
-  if (method == "sik") {
+  if (method == "sik" || method == "tgbsik") {
     SikOptions o;
     o.pelvis_weights = settings.pelvis_weights;
     o.limits = settings.limits;
+    if (method == "tgbsik") o.swivel = SikSwivel::least_rotation;
     return std::make_unique<SikSolver>(body, o);
   }
   if (method == "ccd") {
@@ -117,11 +118,12 @@ std::unique_ptr<IkSolver> make_ik_solver(std::string_view method, const SikBody&
     return std::make_unique<DlsSolver>(body, o);
   }
   throw Error("unknown inverse-kinematics method '" + std::string(method) +
-              "' (expected sik, ccd, pinv, dls, dls-svd or sdls)");
+              "' (expected sik, ccd, pinv, dls, dls-svd, sdls or tgbsik)");
 }
 
 const std::vector<std::string>& ik_solver_names() {
-  static const std::vector<std::string> names = {"sik", "ccd", "pinv", "dls", "dls-svd", "sdls"};
+  static const std::vector<std::string> names = {"sik",     "ccd",  "pinv",  "dls",
+                                                 "dls-svd", "sdls", "tgbsik"};
   return names;
 }
 

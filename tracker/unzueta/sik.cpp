@@ -8,7 +8,7 @@ SikSolver::SikSolver(SikBody body, SikOptions options)
       limits_(body_),
       pelvis_(options.pelvis_weights),
       spine_(body_, limits_),
-      limbs_(body_, limits_, nullptr),
+      limbs_(body_, limits_, nullptr, options.swivel),
       pose_(Pose::neutral(body_.skeleton())) {}
 
 SikSolver::SikSolver(SikBody body, const BodyMesh& mesh, SikOptions options, double floor_y)
@@ -18,7 +18,7 @@ SikSolver::SikSolver(SikBody body, const BodyMesh& mesh, SikOptions options, dou
       collider_(std::in_place, body_, mesh, floor_y),
       pelvis_(options.pelvis_weights),
       spine_(body_, limits_),
-      limbs_(body_, limits_, &*collider_),
+      limbs_(body_, limits_, &*collider_, options.swivel),
       pose_(Pose::neutral(body_.skeleton())) {}
 
 void SikSolver::reset() {

@@ -18,6 +18,9 @@ namespace simcap {
 struct SikOptions {
   SikPelvisWeights pelvis_weights;
   bool limits = true;  // apply the biomechanical limits of §4.5
+  // neutral: SIK; least_rotation: the thesis' TGBSIK (SIK's pelvis, spine and clavicles, TGB limbs
+  // with the swivel of least shoulder and hip rotation).
+  SikSwivel swivel = SikSwivel::neutral;
 };
 
 class SikSolver final : public IkSolver {
@@ -30,7 +33,9 @@ class SikSolver final : public IkSolver {
   SikSolver(const SikSolver&) = delete;
   SikSolver& operator=(const SikSolver&) = delete;
 
-  std::string_view name() const override { return "sik"; }
+  std::string_view name() const override {
+    return options_.swivel == SikSwivel::neutral ? "sik" : "tgbsik";
+  }
   const SikBody& body() const override { return body_; }
   const SikLimits& limits() const { return limits_; }
   const Pose& solve(const SikTargets& targets) override;

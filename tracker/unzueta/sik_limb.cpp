@@ -19,6 +19,9 @@ constexpr double kFloorTolerance = 1e-4;
 constexpr double kTiny = 1e-9;
 // A swivel toward a middle target that leaves the limits is cut to within 2^-30 of their edge.
 constexpr int kSwivelBisections = 30;
+// TGBSIK's swivel: a 5-degree grid over the whole turn, then 30 golden-section steps.
+constexpr int kSwivelSamples = 72;
+constexpr int kSwivelRefinements = 30;
 
 double wrap(double a) {
   return std::remainder(a, 2 * std::numbers::pi);
@@ -33,8 +36,8 @@ double angle_about(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eig
 }  // namespace
 
 SikLimbSolver::SikLimbSolver(const SikBody& body, const SikLimits& limits,
-                             const SikCollider* collider)
-    : body_(body), limits_(limits), collider_(collider) {
+                             const SikCollider* collider, SikSwivel swivel)
+    : body_(body), limits_(limits), collider_(collider), swivel_(swivel) {
   for (int side : {kLeft, kRight}) {
     arm_[side] = geometry(body.arm(side));
     leg_[side] = geometry(body.leg(side));
@@ -171,16 +174,11 @@ void SikLimbSolver::aim_from_neutral(const SikLimb& limb, const Geometry& g,
   update(limb, pose, world);
 }
 
-void SikLimbSolver::follow_middle(const SikLimb& limb, const Eigen::Vector3d& middle, bool limits,
-                                  Pose& pose, SikWorld& world) const {
-  const Eigen::Vector3d a = world.position[limb.a];
-  const Eigen::Vector3d line = world.position[limb.c] - a;
-  if (line.norm() < kTiny) return;
+double SikLimbSolver::swivel_within_limits(const SikLimb& limb, double swivel, bool limits,
+                                           Pose& pose, SikWorld& world) const {
+  const Eigen::Vector3d line = world.position[limb.c] - world.position[limb.a];
+  if (line.norm() < kTiny) return 0.0;
   const Eigen::Vector3d n = line.normalized();
-  const Eigen::Vector3d ab = world.position[limb.b] - a, am = middle - a;
-  // A stretched limb or a middle target on the line has no swivel to follow.
-  if ((ab - ab.dot(n) * n).norm() < kTiny || (am - am.dot(n) * n).norm() < kTiny) return;
-  const double swivel = angle_about(ab, am, n);
   const Eigen::Quaterniond start = pose.rotations[limb.a];
   auto swivelled = [&](double t) {
     turn(limb.a, Eigen::Quaterniond(Eigen::AngleAxisd(t * swivel, n)), pose, world);
@@ -202,6 +200,61 @@ void SikLimbSolver::follow_middle(const SikLimb& limb, const Eigen::Vector3d& mi
   }
   pose.rotations[limb.a] = swivelled(t);
   update(limb, pose, world);
+  return t * swivel;
+}
+
+void SikLimbSolver::follow_middle(const SikLimb& limb, const Eigen::Vector3d& middle, bool limits,
+                                  Pose& pose, SikWorld& world) const {
+  const Eigen::Vector3d a = world.position[limb.a];
+  const Eigen::Vector3d line = world.position[limb.c] - a;
+  if (line.norm() < kTiny) return;
+  const Eigen::Vector3d n = line.normalized();
+  const Eigen::Vector3d ab = world.position[limb.b] - a, am = middle - a;
+  // A stretched limb or a middle target on the line has no swivel to follow.
+  if ((ab - ab.dot(n) * n).norm() < kTiny || (am - am.dot(n) * n).norm() < kTiny) return;
+  swivel_within_limits(limb, angle_about(ab, am, n), limits, pose, world);
+}
+
+void SikLimbSolver::least_rotation_swivel(const SikLimb& limb, bool limits, Pose& pose,
+                                          SikWorld& world) const {
+  const Eigen::Vector3d line = world.position[limb.c] - world.position[limb.a];
+  if (line.norm() < kTiny) return;
+  const Eigen::Vector3d n = line.normalized();
+  const Eigen::Quaterniond start = pose.rotations[limb.a];
+  const Eigen::Quaterniond& parent = world.rotation[body_.parent(limb.a)];
+  const double allowed = limits_.excess(limb.a, start) + kTiny;
+  // f(phi) = swing^2 + twist^2 of A (weight 1, §4.7.1), and whether A stays within its limits.
+  auto cost = [&](double phi) {
+    const Eigen::Quaterniond q = parent.conjugate() * Eigen::AngleAxisd(phi, n) * parent * start;
+    const SwingTwist st = limits_.decompose(limb.a, q);
+    const bool inside = !limits || limits_.excess(limb.a, q) <= allowed;
+    return std::pair{inside ? 0 : 1, st.psi * st.psi + st.twist * st.twist};
+  };
+  // The global minimum over the whole turn (there may be several local ones): a grid, then a
+  // golden-section search in the best cell.
+  const double step = 2 * std::numbers::pi / kSwivelSamples;
+  double best = 0.0;
+  auto best_cost = cost(0.0);
+  for (int k = 1; k < kSwivelSamples; ++k) {
+    const auto c = cost(k * step - std::numbers::pi);
+    if (c < best_cost) {
+      best = k * step - std::numbers::pi;
+      best_cost = c;
+    }
+  }
+  constexpr double kGolden = 0.6180339887498949;
+  double lo = best - step, hi = best + step;
+  for (int i = 0; i < kSwivelRefinements; ++i) {
+    const double x1 = hi - kGolden * (hi - lo), x2 = lo + kGolden * (hi - lo);
+    if (cost(x1) < cost(x2)) {
+      hi = x2;
+    } else {
+      lo = x1;
+    }
+  }
+  const double refined = 0.5 * (lo + hi);
+  if (cost(refined) < best_cost) best = refined;
+  swivel_within_limits(limb, best, limits, pose, world);
 }
 
 void SikLimbSolver::place_limb(const SikLimb& limb, const Geometry& g, int side, bool is_arm,
@@ -212,7 +265,11 @@ void SikLimbSolver::place_limb(const SikLimb& limb, const Geometry& g, int side,
   // A measured elbow is outside the torso: §4.6.1's swivel away from it would only fight it.
   if (is_arm && collider_ && !middle) clear_elbow(limb, side, target, limits, pose, world);
   bend_toward(limb, g, target, limits, pose, world);
-  if (middle) follow_middle(limb, *middle, limits, pose, world);
+  if (middle) {
+    follow_middle(limb, *middle, limits, pose, world);
+  } else if (swivel_ == SikSwivel::least_rotation) {
+    least_rotation_swivel(limb, limits, pose, world);
+  }
   if (!collider_) return;
   if (is_arm) {
     clear_wrist(limb, side, limits, pose, world);
@@ -232,7 +289,11 @@ void SikLimbSolver::place_limb(const SikLimb& limb, const Geometry& g, int side,
     const Eigen::Vector3d lifted = world.position[limb.c] + Eigen::Vector3d(0.0, depth, 0.0);
     aim_from_neutral(limb, g, lifted, false, pose, world);
     bend_toward(limb, g, lifted, false, pose, world);
-    if (middle) follow_middle(limb, *middle, false, pose, world);
+    if (middle) {
+      follow_middle(limb, *middle, false, pose, world);
+    } else if (swivel_ == SikSwivel::least_rotation) {
+      least_rotation_swivel(limb, false, pose, world);
+    }
     level_foot(limb, pose, world);
   }
 }

@@ -20,10 +20,17 @@ struct SikWorld {
   std::vector<Eigen::Vector3d> position;
 };
 
+// How a limb without a middle target chooses its swivel about the root-to-end line.
+enum class SikSwivel {
+  neutral,         // SIK (Alg. 13): whatever the turn from the neutral stretched limb gives
+  least_rotation,  // TGBSIK (§4.7.1): the global minimum of swing^2 + twist^2 of A over a turn
+};
+
 class SikLimbSolver {
  public:
   // `body`, `limits` and `collider` (nullptr: no collision avoidance) must outlive the solver.
-  SikLimbSolver(const SikBody& body, const SikLimits& limits, const SikCollider* collider);
+  SikLimbSolver(const SikBody& body, const SikLimits& limits, const SikCollider* collider,
+                SikSwivel swivel = SikSwivel::neutral);
 
   // Alg. 12: if the stretched arm cannot reach `wrist_target`, turns the clavicle (from its
   // neutral orientation) just enough toward it. Needs world entries up to the clavicle's parent.
@@ -53,10 +60,15 @@ class SikLimbSolver {
   void place_limb(const SikLimb& limb, const Geometry& g, int side, bool is_arm,
                   const Eigen::Vector3d& target, const std::optional<Eigen::Vector3d>& middle,
                   bool limits, Pose& pose, SikWorld& world) const;
-  // Turns A about the line from A to C (C stays put) so that B lies in the half-plane from that
-  // line through `middle`; with limits, only as far as A stays within them.
+  // Turns A about the line from A to C (C stays put) by `swivel` radians; with limits, only the
+  // largest share of it that keeps A within them. Returns the angle turned.
+  double swivel_within_limits(const SikLimb& limb, double swivel, bool limits, Pose& pose,
+                              SikWorld& world) const;
+  // The thesis' use of a known B (§4.4): swivels so that B lies in the half-plane from the A-C
+  // line through `middle`.
   void follow_middle(const SikLimb& limb, const Eigen::Vector3d& middle, bool limits, Pose& pose,
                      SikWorld& world) const;
+  void least_rotation_swivel(const SikLimb& limb, bool limits, Pose& pose, SikWorld& world) const;
   double flexion_for_reach(const SikLimb& limb, const Geometry& g, double reach, bool limits) const;
   Eigen::Quaterniond aim(const Geometry& g, double flexion, const Eigen::Vector3d& direction) const;
   // Lines 1-6: the flexion the distance needs, A aimed at the target, both within the limits.
@@ -77,6 +89,7 @@ class SikLimbSolver {
   const SikBody& body_;
   const SikLimits& limits_;
   const SikCollider* collider_;
+  SikSwivel swivel_;
   std::array<Geometry, 2> arm_, leg_;
 };
 

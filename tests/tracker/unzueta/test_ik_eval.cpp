@@ -177,7 +177,8 @@ TEST(IkEvalCommand, AllPutsEverySolverBesideTheThesisColumns) {
   EXPECT_EQ(line.rfind("method,position_error,orientation_error,ms_per_frame", 0), 0u) << line;
   std::vector<std::string> methods;
   while (std::getline(table, line)) methods.push_back(line.substr(0, line.find(',')));
-  EXPECT_EQ(methods, (std::vector<std::string>{"ccd", "pinv", "dls", "dls-svd", "sdls", "sik"}));
+  EXPECT_EQ(methods,
+            (std::vector<std::string>{"ccd", "pinv", "dls", "dls-svd", "sdls", "sik", "tgbsik"}));
   for (const std::string& m : methods) {
     std::ifstream json(dir + "/" + m + "/summary.json");
     ASSERT_TRUE(json) << m;

@@ -235,6 +235,44 @@ TEST_F(SikTest, MiddleTargetsOnlySwivel) {
   EXPECT_NEAR(out.y(), free.y(), 1e-9);
 }
 
+TEST_F(SikTest, LeastRotationSwivelIsTheGlobalMinimumOverATurn) {
+  // TGBSIK: the end on its target, and no swivel about the root-to-end line (brute force, every
+  // half degree) gives the shoulder or hip a smaller swing^2 + twist^2.
+  const SikLimits limits(body);
+  const SikLimbSolver solver(body, limits, nullptr, SikSwivel::least_rotation);
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int i = 0; i < 40; ++i) {
+    for (bool arm : {true, false}) {
+      const SikLimb& limb = arm ? body.arm(kLeft) : body.leg(kLeft);
+      const auto [a, b] = bones(limb);
+      const double reach = std::abs(a - b) + 0.05 + unit(rng) * (a + b - std::abs(a - b) - 0.1);
+      const Eigen::Vector3d target = neutral.position[limb.a] + reach * random_unit(rng);
+      Pose pose = Pose::neutral(skeleton);
+      SikWorld world;
+      body.forward(pose, world.rotation, world.position);
+      if (arm) {
+        solver.place_arm(kLeft, target, std::nullopt, false, pose, world);
+      } else {
+        solver.place_leg(kLeft, target, std::nullopt, false, pose, world);
+      }
+      ASSERT_LT((world.position[limb.c] - target).norm(), 1e-6) << i;
+      auto cost = [&](const Eigen::Quaterniond& q) {
+        const SwingTwist st = limits.decompose(limb.a, q);
+        return st.psi * st.psi + st.twist * st.twist;
+      };
+      const double found = cost(pose.rotations[limb.a]);
+      const Eigen::Vector3d n = (target - world.position[limb.a]).normalized();
+      const Eigen::Quaterniond parent = world.rotation[body.parent(limb.a)];
+      for (int k = 0; k < 720; ++k) {
+        const Eigen::Quaterniond q = parent.conjugate() * Eigen::AngleAxisd(k * kPi / 360, n) *
+                                     parent * pose.rotations[limb.a];
+        EXPECT_GE(cost(q), found - 1e-9) << i << " arm " << arm << " step " << k;
+      }
+    }
+  }
+}
+
 TEST_F(SikTest, ClavicleTurnsOnlyWhenTheArmCannotReach) {
   const SikLimits limits(body);
   const SikLimbSolver solver(body, limits, nullptr);
