@@ -187,10 +187,12 @@ void add_ik_eval(CLI::App& app, Action& action) {
       ->required();
   std::vector<std::string> methods = ik_solver_names();
   methods.push_back("all");
-  cmd->add_option("--method,--solver", args.method,
-                  "Solver: sik, ccd, pinv (pseudoinverse), dls, dls-svd, sdls (selectively "
-                  "damped least squares), tgbsik (SIK with the swivel of least shoulder and hip "
-                  "rotation), or all (Table 10 side by side, one subfolder each)")
+  cmd->add_option(
+         "--method,--solver", args.method,
+         "Solver: sik, ccd, pinv (pseudoinverse), dls, dls-svd, sdls (selectively "
+         "damped least squares), tgbsik (SIK with the swivel of least shoulder and hip "
+         "rotation), kma (CCD spine from the standing pose, TGB limbs with zero swivel), or "
+         "all (Table 10 side by side, one subfolder each)")
       ->check(CLI::IsMember(methods))
       ->capture_default_str();
   cmd->add_option("--pelvis-weights", args.pelvis_weights,

@@ -1,5 +1,5 @@
-// The CCD baseline of Unzueta's Table 10 (§4.7.1, after Wang & Chen 1991): SIK's pelvis estimate,
-// then CCD on spine, clavicle+arm and leg chains from the previous frame, within SIK's limits.
+// The CCD and KMA baselines of Unzueta's Table 10 (§4.7.1): SIK's pelvis estimate, then CCD (Wang &
+// Chen 1991) on the chains within SIK's limits; KMA (Kulpa et al. 2005) CCD on the spine only.
 #pragma once
 
 #include <array>
@@ -8,6 +8,7 @@
 #include "tracker/unzueta/ik_baseline_options.h"
 #include "tracker/unzueta/sik_body.h"
 #include "tracker/unzueta/sik_ik_solver.h"
+#include "tracker/unzueta/sik_limb.h"
 #include "tracker/unzueta/sik_limits.h"
 #include "tracker/unzueta/sik_pelvis.h"
 
@@ -15,13 +16,22 @@ namespace simcap {
 
 using CcdOptions = IkBaselineOptions;
 
+enum class CcdVariant {
+  // CCD on spine, clavicle+arm and leg chains, each frame from the previous one.
+  ccd,
+  // The thesis' KMA: every frame from the standing pose, CCD on the spine, clavicles unturned,
+  // limbs by TGB with zero swivel: the elbow in the half-plane from the shoulder-wrist line toward
+  // the pelvis' -Y (-Z when in line), the knee toward its +Z (+Y when in line).
+  kma,
+};
+
 class CcdSolver final : public IkSolver {
  public:
-  explicit CcdSolver(SikBody body, CcdOptions options = {});
+  explicit CcdSolver(SikBody body, CcdOptions options = {}, CcdVariant variant = CcdVariant::ccd);
   CcdSolver(const CcdSolver&) = delete;
   CcdSolver& operator=(const CcdSolver&) = delete;
 
-  std::string_view name() const override { return "ccd"; }
+  std::string_view name() const override { return variant_ == CcdVariant::ccd ? "ccd" : "kma"; }
   const SikBody& body() const override { return body_; }
   const Pose& solve(const SikTargets& targets) override;
   void reset() override;
@@ -30,14 +40,18 @@ class CcdSolver final : public IkSolver {
   // Sweeps `chain` (base first) toward putting `effector` on `target`.
   void descend(const std::vector<int>& chain, int effector, const Eigen::Vector3d& target);
   void update_world();
+  void place_kma_limbs(const SikTargets& targets);
 
   CcdOptions options_;
+  CcdVariant variant_;
   SikBody body_;
   SikLimits limits_;
   SikPelvisEstimator pelvis_;
+  SikLimbSolver limbs_;
   Pose pose_;
-  std::vector<Eigen::Quaterniond> rotation_;
-  std::vector<Eigen::Vector3d> position_;
+  SikWorld world_;
+  std::vector<Eigen::Quaterniond>& rotation_ = world_.rotation;
+  std::vector<Eigen::Vector3d>& position_ = world_.position;
   std::vector<int> spine_;                     // spine joints without the root
   std::array<std::vector<int>, 2> arm_, leg_;  // clavicle (if any), shoulder, elbow; hip, knee
 };

@@ -101,11 +101,12 @@ std::unique_ptr<IkSolver> make_ik_solver(std::string_view method, const SikBody&
     if (method == "tgbsik") o.swivel = SikSwivel::least_rotation;
     return std::make_unique<SikSolver>(body, o);
   }
-  if (method == "ccd") {
+  if (method == "ccd" || method == "kma") {
     CcdOptions o;
     o.pelvis_weights = settings.pelvis_weights;
     o.limits = settings.limits;
-    return std::make_unique<CcdSolver>(body, o);
+    return std::make_unique<CcdSolver>(body, o,
+                                       method == "kma" ? CcdVariant::kma : CcdVariant::ccd);
   }
   for (JacobianUpdate update : {JacobianUpdate::kPseudoinverse, JacobianUpdate::kDls,
                                 JacobianUpdate::kDlsSvd, JacobianUpdate::kSdls}) {
@@ -118,12 +119,12 @@ std::unique_ptr<IkSolver> make_ik_solver(std::string_view method, const SikBody&
     return std::make_unique<DlsSolver>(body, o);
   }
   throw Error("unknown inverse-kinematics method '" + std::string(method) +
-              "' (expected sik, ccd, pinv, dls, dls-svd, sdls or tgbsik)");
+              "' (expected sik, ccd, pinv, dls, dls-svd, sdls, tgbsik or kma)");
 }
 
 const std::vector<std::string>& ik_solver_names() {
-  static const std::vector<std::string> names = {"sik",     "ccd",  "pinv",  "dls",
-                                                 "dls-svd", "sdls", "tgbsik"};
+  static const std::vector<std::string> names = {"sik",     "ccd",  "pinv",   "dls",
+                                                 "dls-svd", "sdls", "tgbsik", "kma"};
   return names;
 }
 

@@ -47,7 +47,7 @@ struct IkSolverSettings {
   bool limits = true;
   double dls_damping = 0.75;  // metres (see DlsOptions::damping)
 };
-// The solvers simcap implements: sik, ccd, pinv, dls, dls-svd, sdls, tgbsik.
+// The solvers simcap implements: sik, ccd, pinv, dls, dls-svd, sdls, tgbsik, kma.
 const std::vector<std::string>& ik_solver_names();
 // One of ik_solver_names() on `body`; throws Error for another name.
 std::unique_ptr<IkSolver> make_ik_solver(std::string_view method, const SikBody& body,
