@@ -23,6 +23,7 @@ struct IkEvalArgs {
   bool anatomical_hinges = false;
   bool known_orientations = false;
   bool middle_targets = false;
+  std::string swivel = "neutral";
   int frames = 0;
 };
 
@@ -55,6 +56,9 @@ IkEvalResult evaluate_solver(const IkEvalArgs& a, const IkClip& clip, const std:
   settings.pelvis_weights = {a.pelvis_weights[0], a.pelvis_weights[1], a.pelvis_weights[2]};
   settings.limits = !a.no_limits;
   settings.dls_damping = a.damping;
+  settings.sik_swivel = a.swivel == "reference"        ? SikSwivel::reference
+                        : a.swivel == "least-rotation" ? SikSwivel::least_rotation
+                                                       : SikSwivel::neutral;
   const auto solver = make_ik_solver(method, clip.body, settings);
   const std::vector<int> joints = table10_joints(clip.body);
   const IkEvalResult r =
@@ -87,6 +91,7 @@ IkEvalResult evaluate_solver(const IkEvalArgs& a, const IkClip& clip, const std:
                             {"hinge_axes", a.anatomical_hinges ? "anatomical" : "from the clip"},
                             {"known_orientations", a.known_orientations},
                             {"middle_targets", a.middle_targets},
+                            {"sik_swivel", a.swivel},
                             {"position_error", r.position_error},
                             {"orientation_error", r.orientation_error},
                             {"ms_per_frame", r.ms_per_frame}};
@@ -216,6 +221,12 @@ void add_ik_eval(CLI::App& app, Action& action) {
   cmd->add_flag("--middle-targets", args.middle_targets,
                 "Also give the true elbows and knees (SIK swivels each limb toward them; not "
                 "Table 10's setting; the baselines ignore them)");
+  cmd->add_option("--swivel", args.swivel,
+                  "sik: the limbs' swivel: neutral (Alg. 13, from the stretched limb), "
+                  "least-rotation (TGBSIK's), reference (KMA's: elbows toward the pelvis' -Y, "
+                  "knees toward its +Z)")
+      ->check(CLI::IsMember({"neutral", "least-rotation", "reference"}))
+      ->capture_default_str();
   cmd->add_option("--frames", args.frames, "Evaluate only the first N frames (default: all)")
       ->check(non_negative_number());
   cmd->footer(

@@ -19,7 +19,7 @@ CcdSolver::CcdSolver(SikBody body, CcdOptions options, CcdVariant variant)
       body_(std::move(body)),
       limits_(body_),
       pelvis_(options.pelvis_weights),
-      limbs_(body_, limits_, nullptr),
+      limbs_(body_, limits_, nullptr, SikSwivel::reference),
       pose_(Pose::neutral(body_.skeleton())),
       spine_(body_.spine().begin() + 1, body_.spine().end()) {
   for (int side : {kLeft, kRight}) {
@@ -70,29 +70,6 @@ void CcdSolver::descend(const std::vector<int>& chain, int effector,
   }
 }
 
-void CcdSolver::place_kma_limbs(const SikTargets& targets) {
-  const Eigen::Matrix3d pelvis = rotation_[body_.root()].toRotationMatrix();
-  // The TGB swivel's reference direction, or the second one when the first is in line with the
-  // limb (then it says nothing about the swivel).
-  auto toward = [](const Eigen::Vector3d& a, const Eigen::Vector3d& c, const Eigen::Vector3d& first,
-                   const Eigen::Vector3d& second) {
-    constexpr double kInLine = 1e-3;  // sine of the angle between the limb and the reference
-    const Eigen::Vector3d line = (c - a).normalized();
-    return Eigen::Vector3d(a + (line.cross(first).norm() > kInLine ? first : second));
-  };
-  for (int side : {kLeft, kRight}) {
-    const int hip = body_.leg(side).a;
-    limbs_.place_leg(side, targets.ankle[side],
-                     toward(position_[hip], targets.ankle[side], pelvis.col(2), pelvis.col(1)),
-                     options_.limits, pose_, world_);
-    const int shoulder = body_.arm(side).a;
-    limbs_.place_arm(
-        side, targets.wrist[side],
-        toward(position_[shoulder], targets.wrist[side], -pelvis.col(1), -pelvis.col(2)),
-        options_.limits, pose_, world_);
-  }
-}
-
 const Pose& CcdSolver::solve(const SikTargets& targets) {
   if (variant_ == CcdVariant::kma) pose_ = Pose::neutral(body_.skeleton());
   pose_.rotations[body_.root()] = Eigen::Quaterniond(pelvis_.estimate(targets));
@@ -102,7 +79,10 @@ const Pose& CcdSolver::solve(const SikTargets& targets) {
   pose_.root_position -= 0.5 * (position_[body_.head()] - targets.head);
   if (variant_ == CcdVariant::kma) {
     update_world();
-    place_kma_limbs(targets);
+    for (int side : {kLeft, kRight}) {
+      limbs_.place_leg(side, targets.ankle[side], std::nullopt, options_.limits, pose_, world_);
+      limbs_.place_arm(side, targets.wrist[side], std::nullopt, options_.limits, pose_, world_);
+    }
     return pose_;
   }
   for (int side : {kLeft, kRight}) {

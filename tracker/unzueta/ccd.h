@@ -20,8 +20,7 @@ enum class CcdVariant {
   // CCD on spine, clavicle+arm and leg chains, each frame from the previous one.
   ccd,
   // The thesis' KMA: every frame from the standing pose, CCD on the spine, clavicles unturned,
-  // limbs by TGB with zero swivel: the elbow in the half-plane from the shoulder-wrist line toward
-  // the pelvis' -Y (-Z when in line), the knee toward its +Z (+Y when in line).
+  // limbs by TGB with zero swivel (SikSwivel::reference).
   kma,
 };
 
@@ -40,7 +39,6 @@ class CcdSolver final : public IkSolver {
   // Sweeps `chain` (base first) toward putting `effector` on `target`.
   void descend(const std::vector<int>& chain, int effector, const Eigen::Vector3d& target);
   void update_world();
-  void place_kma_limbs(const SikTargets& targets);
 
   CcdOptions options_;
   CcdVariant variant_;

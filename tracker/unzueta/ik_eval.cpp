@@ -98,7 +98,7 @@ std::unique_ptr<IkSolver> make_ik_solver(std::string_view method, const SikBody&
     SikOptions o;
     o.pelvis_weights = settings.pelvis_weights;
     o.limits = settings.limits;
-    if (method == "tgbsik") o.swivel = SikSwivel::least_rotation;
+    o.swivel = method == "tgbsik" ? SikSwivel::least_rotation : settings.sik_swivel;
     return std::make_unique<SikSolver>(body, o);
   }
   if (method == "ccd" || method == "kma") {

@@ -10,6 +10,7 @@
 
 #include "models/motion.h"
 #include "tracker/unzueta/sik_ik_solver.h"
+#include "tracker/unzueta/sik_limb.h"
 #include "tracker/unzueta/sik_pelvis.h"
 
 namespace simcap {
@@ -45,7 +46,8 @@ IkClip load_ik_clip(const std::filesystem::path& bvh, bool identify_hinges, int 
 struct IkSolverSettings {
   SikPelvisWeights pelvis_weights;
   bool limits = true;
-  double dls_damping = 0.75;  // metres (see DlsOptions::damping)
+  double dls_damping = 0.75;                  // metres (see DlsOptions::damping)
+  SikSwivel sik_swivel = SikSwivel::neutral;  // sik's limb swivel (tgbsik: least_rotation)
 };
 // The solvers simcap implements: sik, ccd, pinv, dls, dls-svd, sdls, tgbsik, kma.
 const std::vector<std::string>& ik_solver_names();

@@ -257,6 +257,33 @@ void SikLimbSolver::least_rotation_swivel(const SikLimb& limb, bool limits, Pose
   swivel_within_limits(limb, best, limits, pose, world);
 }
 
+void SikLimbSolver::choose_swivel(const SikLimb& limb, bool is_arm,
+                                  const std::optional<Eigen::Vector3d>& middle, bool limits,
+                                  Pose& pose, SikWorld& world) const {
+  if (middle) {
+    follow_middle(limb, *middle, limits, pose, world);
+    return;
+  }
+  switch (swivel_) {
+    case SikSwivel::neutral:
+      return;
+    case SikSwivel::least_rotation:
+      least_rotation_swivel(limb, limits, pose, world);
+      return;
+    case SikSwivel::reference:
+      break;
+  }
+  const Eigen::Matrix3d pelvis = world.rotation[body_.root()].toRotationMatrix();
+  const Eigen::Vector3d first = is_arm ? Eigen::Vector3d(-pelvis.col(1)) : pelvis.col(2);
+  const Eigen::Vector3d second = is_arm ? Eigen::Vector3d(-pelvis.col(2)) : pelvis.col(1);
+  // The second reference when the first is in line with the limb (it then says nothing).
+  constexpr double kInLine = 1e-3;  // sine of the angle between the limb and the reference
+  const Eigen::Vector3d a = world.position[limb.a];
+  const Eigen::Vector3d line = (world.position[limb.c] - a).normalized();
+  follow_middle(limb, a + (line.cross(first).norm() > kInLine ? first : second), limits, pose,
+                world);
+}
+
 void SikLimbSolver::place_limb(const SikLimb& limb, const Geometry& g, int side, bool is_arm,
                                const Eigen::Vector3d& target,
                                const std::optional<Eigen::Vector3d>& middle, bool limits,
@@ -265,11 +292,7 @@ void SikLimbSolver::place_limb(const SikLimb& limb, const Geometry& g, int side,
   // A measured elbow is outside the torso: §4.6.1's swivel away from it would only fight it.
   if (is_arm && collider_ && !middle) clear_elbow(limb, side, target, limits, pose, world);
   bend_toward(limb, g, target, limits, pose, world);
-  if (middle) {
-    follow_middle(limb, *middle, limits, pose, world);
-  } else if (swivel_ == SikSwivel::least_rotation) {
-    least_rotation_swivel(limb, limits, pose, world);
-  }
+  choose_swivel(limb, is_arm, middle, limits, pose, world);
   if (!collider_) return;
   if (is_arm) {
     clear_wrist(limb, side, limits, pose, world);
@@ -289,11 +312,7 @@ void SikLimbSolver::place_limb(const SikLimb& limb, const Geometry& g, int side,
     const Eigen::Vector3d lifted = world.position[limb.c] + Eigen::Vector3d(0.0, depth, 0.0);
     aim_from_neutral(limb, g, lifted, false, pose, world);
     bend_toward(limb, g, lifted, false, pose, world);
-    if (middle) {
-      follow_middle(limb, *middle, false, pose, world);
-    } else if (swivel_ == SikSwivel::least_rotation) {
-      least_rotation_swivel(limb, false, pose, world);
-    }
+    choose_swivel(limb, is_arm, middle, false, pose, world);
     level_foot(limb, pose, world);
   }
 }

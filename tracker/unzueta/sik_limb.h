@@ -24,6 +24,9 @@ struct SikWorld {
 enum class SikSwivel {
   neutral,         // SIK (Alg. 13): whatever the turn from the neutral stretched limb gives
   least_rotation,  // TGBSIK (§4.7.1): the global minimum of swing^2 + twist^2 of A over a turn
+  // KMA's TGB zero swivel (§4.7.1): the elbow toward the pelvis' -Y (-Z when in line with the
+  // arm), the knee toward its +Z (+Y when in line)
+  reference,
 };
 
 class SikLimbSolver {
@@ -69,6 +72,9 @@ class SikLimbSolver {
   void follow_middle(const SikLimb& limb, const Eigen::Vector3d& middle, bool limits, Pose& pose,
                      SikWorld& world) const;
   void least_rotation_swivel(const SikLimb& limb, bool limits, Pose& pose, SikWorld& world) const;
+  // follow_middle with a middle target, else the solver's SikSwivel rule.
+  void choose_swivel(const SikLimb& limb, bool is_arm, const std::optional<Eigen::Vector3d>& middle,
+                     bool limits, Pose& pose, SikWorld& world) const;
   double flexion_for_reach(const SikLimb& limb, const Geometry& g, double reach, bool limits) const;
   Eigen::Quaterniond aim(const Geometry& g, double flexion, const Eigen::Vector3d& direction) const;
   // Lines 1-6: the flexion the distance needs, A aimed at the target, both within the limits.
