@@ -16,12 +16,16 @@ namespace {
 
 using testing::world_positions;
 
+Motion walk(const Skeleton& skeleton, double seconds, double fps) {
+  ProceduralSpec spec;
+  spec.duration_s = seconds;
+  return generate_procedural(spec, skeleton, fps);
+}
+
 TEST(Ccd, FollowsAWalkWithinItsTolerance) {
   const Skeleton skeleton = build_humanoid();
   const SikBody body(skeleton);
-  ProceduralSpec walk;
-  walk.duration_s = 2.0;
-  const Motion motion = generate_procedural(walk, skeleton, 120.0);
+  const Motion motion = walk(skeleton, 2.0, 120.0);
   CcdSolver solver(body);
   std::vector<double> errors;
   for (const Pose& truth : motion.frames) {
@@ -64,9 +68,7 @@ TEST(Kma, BendsElbowsDownAndKneesForwardOfThePelvis) {
   // the pelvis' -Y (arms) or +Z (legs); the ends on reachable targets; within the limits.
   const Skeleton skeleton = build_humanoid();
   const SikBody body(skeleton);
-  ProceduralSpec walk;
-  walk.duration_s = 1.0;
-  const Motion motion = generate_procedural(walk, skeleton, 30.0);
+  const Motion motion = walk(skeleton, 1.0, 30.0);
   CcdOptions free;
   free.limits = false;
   CcdSolver solver(body, free, CcdVariant::kma);

@@ -58,18 +58,25 @@ TEST_F(SikTest, NeutralTargetsGiveTheNeutralPose) {
   }
 }
 
-// Places one limb with the limb solver on the neutral body and returns where its end landed.
-Eigen::Vector3d place(const SikBody& body, const SikLimits& limits, bool arm, int side,
-                      const Eigen::Vector3d& target, bool use_limits) {
-  const SikLimbSolver solver(body, limits, nullptr);
+// Places one limb (no middle target) with `solver` on the neutral body; `world` gets its joints.
+Pose place_with(const SikLimbSolver& solver, const SikBody& body, bool arm, int side,
+                const Eigen::Vector3d& target, bool use_limits, SikWorld& world) {
   Pose pose = Pose::neutral(body.skeleton());
-  SikWorld world;
   body.forward(pose, world.rotation, world.position);
   if (arm) {
     solver.place_arm(side, target, std::nullopt, use_limits, pose, world);
   } else {
     solver.place_leg(side, target, std::nullopt, use_limits, pose, world);
   }
+  return pose;
+}
+
+// Places one limb with the limb solver on the neutral body and returns where its end landed.
+Eigen::Vector3d place(const SikBody& body, const SikLimits& limits, bool arm, int side,
+                      const Eigen::Vector3d& target, bool use_limits) {
+  const SikLimbSolver solver(body, limits, nullptr);
+  SikWorld world;
+  const Pose pose = place_with(solver, body, arm, side, target, use_limits, world);
   for (int j = 0; j < body.size(); ++j) {
     EXPECT_LT(limits.excess(j, pose.rotations[j]), use_limits ? 1e-9 : INFINITY);
   }
@@ -248,14 +255,8 @@ TEST_F(SikTest, LeastRotationSwivelIsTheGlobalMinimumOverATurn) {
       const auto [a, b] = bones(limb);
       const double reach = std::abs(a - b) + 0.05 + unit(rng) * (a + b - std::abs(a - b) - 0.1);
       const Eigen::Vector3d target = neutral.position[limb.a] + reach * random_unit(rng);
-      Pose pose = Pose::neutral(skeleton);
       SikWorld world;
-      body.forward(pose, world.rotation, world.position);
-      if (arm) {
-        solver.place_arm(kLeft, target, std::nullopt, false, pose, world);
-      } else {
-        solver.place_leg(kLeft, target, std::nullopt, false, pose, world);
-      }
+      const Pose pose = place_with(solver, body, arm, kLeft, target, false, world);
       ASSERT_LT((world.position[limb.c] - target).norm(), 1e-6) << i;
       auto cost = [&](const Eigen::Quaterniond& q) {
         const SwingTwist st = limits.decompose(limb.a, q);
