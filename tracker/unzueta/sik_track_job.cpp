@@ -324,6 +324,8 @@ TrackSummary track_dataset_sik(const std::filesystem::path& dataset,
 TrackSummary track_sik(const std::filesystem::path& dataset, const std::filesystem::path& out,
                        const SikTrackOptions& options) {
   if (options.effectors == EffectorSource::gt) return track_dataset_sik(dataset, out, options);
+  // The pixel pipeline tracks no elbow or knee (CFOF follows head, hands and feet).
+  if (options.middle_targets) throw Error("--middle-targets needs --effectors gt");
   return tracker::track_dataset_unzueta(dataset, out, options);
 }
 

@@ -212,6 +212,10 @@ TEST(SikTrackJob, MiddleTargetsBringElbowsAndKneesToTheTruth) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("'l_elbow'"), std::string::npos) << e.what();
   }
+  // Tracked effectors have no elbows or knees.
+  options.effectors = EffectorSource::depth;
+  EXPECT_THROW(track_sik(tmp.path(), tmp / "depth", options), Error);
+  EXPECT_FALSE(std::filesystem::exists(tmp / "depth" / "joints3d.csv"));
 }
 
 TEST(SikTrackJob, NamesAMissingEndEffector) {
