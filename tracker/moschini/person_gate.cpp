@@ -38,19 +38,64 @@ void paint_body(const Camera& cam, const PlacedSurface& body, double margin, cv:
   }
 }
 
-// Paints into `mask` the image of each voxel: a disc of about its circumscribed sphere's image
-// (plus a pixel, so that neighbouring discs leave no cracks).
-void paint_voxels(const Camera& cam, const std::vector<Eigen::Vector3d>& centres,
-                  double half_diagonal, cv::Mat& mask) {
+// Calls draw(pixel, radius, depth) for the image of each voxel: a disc of about its circumscribed
+// sphere's image at the sphere's nearest depth.
+template <typename Draw>
+void each_voxel(const Camera& cam, const std::vector<Eigen::Vector3d>& centres,
+                double half_diagonal, Draw draw) {
   for (const Eigen::Vector3d& p : centres) {
     const Eigen::Vector3d q = cam.to_camera(p);
     if (q.z() <= half_diagonal) continue;
-    const Eigen::Vector2d px = cam.project_camera(q);
-    const int r = static_cast<int>(std::ceil(half_diagonal * cam.K(0, 0) / q.z())) + 1;
+    draw(cam.project_camera(q), half_diagonal * cam.K(0, 0) / q.z(), q.z() - half_diagonal);
+  }
+}
+
+// Paints into `mask` the image of each voxel (its disc widened by a pixel, so that neighbouring
+// discs leave no cracks).
+void paint_voxels(const Camera& cam, const std::vector<Eigen::Vector3d>& centres,
+                  double half_diagonal, cv::Mat& mask) {
+  each_voxel(cam, centres, half_diagonal, [&](const Eigen::Vector2d& px, double r, double) {
     cv::circle(
         mask,
-        cv::Point(static_cast<int>(std::lround(px.x())), static_cast<int>(std::lround(px.y()))), r,
-        cv::Scalar(255), cv::FILLED);
+        cv::Point(static_cast<int>(std::lround(px.x())), static_cast<int>(std::lround(px.y()))),
+        static_cast<int>(std::ceil(r)) + 1, cv::Scalar(255), cv::FILLED);
+  });
+}
+
+// Lowers `depth` (CV_32F, camera z in metres) to `z` over the disc of `radius` pixels at `px`.
+void splat_depth(cv::Mat& depth, const Eigen::Vector2d& px, double radius, double z) {
+  const int r = static_cast<int>(std::ceil(radius));
+  const int cu = static_cast<int>(std::lround(px.x())), cw = static_cast<int>(std::lround(px.y()));
+  const float zf = static_cast<float>(z);
+  for (int v = std::max(0, cw - r); v <= std::min(depth.rows - 1, cw + r); ++v) {
+    float* row = depth.ptr<float>(v);
+    for (int u = std::max(0, cu - r); u <= std::min(depth.cols - 1, cu + r); ++u) {
+      if ((u - cu) * (u - cu) + (v - cw) * (v - cw) <= radius * radius)
+        row[u] = std::min(row[u], zf);
+    }
+  }
+}
+
+// Lowers `depth` to the voxels' nearest depth where they project.
+void voxel_depth(const Camera& cam, const std::vector<Eigen::Vector3d>& centres,
+                 double half_diagonal, cv::Mat& depth) {
+  each_voxel(cam, centres, half_diagonal, [&](const Eigen::Vector2d& px, double r, double z) {
+    splat_depth(depth, px, r + 1, z);
+  });
+}
+
+// Lowers `depth` to the body's nearest depth where its capsules, widened by `margin`, project:
+// spheres along each capsule's axis a voxel's step apart, each at its front's depth.
+void body_depth(const Camera& cam, const PlacedSurface& body, double margin, double step,
+                cv::Mat& depth) {
+  for (const PlacedCapsule& c : body) {
+    const int n = std::max(1, static_cast<int>(std::ceil(c.ab.norm() / step)));
+    for (int i = 0; i <= n; ++i) {
+      const double t = static_cast<double>(i) / n, r = c.radius(t);
+      const Eigen::Vector3d q = cam.to_camera(c.a + t * c.ab);
+      if (q.z() <= r + 0.05) continue;
+      splat_depth(depth, cam.project_camera(q), (r + margin) * cam.K(0, 0) / q.z(), q.z() - r);
+    }
   }
 }
 
@@ -214,7 +259,14 @@ GateResult PersonGate::restrict(const Occupancy& hull, const PlacedSurface& body
     paint_voxels(cam, dropped, half_diagonal, others);
     cv::Mat own = cv::Mat::zeros(silhouettes[c].size(), CV_8UC1);
     paint_body(cam, body, options_.own_margin_m, own);
-    cv::Mat moved = silhouettes[c] & others & ~own;
+    // Where both the widened body and the others' volume project: theirs outside the body's
+    // core, or where their volume lies well in front of it.
+    constexpr float kFar = std::numeric_limits<float>::max();
+    cv::Mat body_z(own.size(), CV_32F, cv::Scalar(kFar)), others_z = body_z.clone();
+    body_depth(cam, body, options_.core_margin_m, voxel, body_z);
+    voxel_depth(cam, dropped, half_diagonal, others_z);
+    const cv::Mat hidden = (body_z == kFar) | (others_z < body_z - options_.front_m);
+    cv::Mat moved = silhouettes[c] & others & (~own | hidden);
     if (distinct && c < distinct->size() && !(*distinct)[c].empty()) moved &= ~(*distinct)[c];
     result.covered_pixels += cv::countNonZero(moved);
     silhouettes[c] &= ~moved;

@@ -35,6 +35,14 @@ struct GateOptions {
   // the person's own pixels only.
   bool others_to_cover = false;
   double own_margin_m = 0.05;
+  // Inside that widened outline the pixels onto which the others' volume projects are theirs
+  // too when they lie outside the body's outline widened by only core_margin_m (the body
+  // explains them by the slack left for its motion alone, the others' volume directly: where
+  // someone stands just behind the person, their pixels border its outline), or when that
+  // volume lies more than front_m nearer the camera than the body (someone passing in front:
+  // ground-truth silhouettes make those pixels cover too).
+  double core_margin_m = 0.025;
+  double front_m = 0.10;
 };
 
 // What the gate kept.
@@ -57,9 +65,9 @@ class PersonGate {
   // each silhouette keeps only its pixels under the projection of a kept voxel and within
   // margin_m of the body's projection, and so does each `cover` mask (when given and not
   // empty). With others_to_cover, the kept pixels the dropped volume explains better than the
-  // body go to `cover` (created when empty), but for those in `distinct` (per camera, when given
-  // and not empty: pixels whose colour says they are the person's), and a voxel beyond
-  // own_margin_m of the body that lies nearer to `others_before` (the previous frame's
+  // body, or hides it at, go to `cover` (created when empty), but for those in `distinct` (per
+  // camera, when given and not empty: pixels whose colour says they are the person's), and a voxel
+  // beyond own_margin_m of the body that lies nearer to `others_before` (the previous frame's
   // GateResult::others) than to the body is the others'. Thread-safe.
   GateResult restrict(const Occupancy& hull, const PlacedSurface& body,
                       std::vector<cv::Mat>& silhouettes, std::vector<cv::Mat>* cover,
