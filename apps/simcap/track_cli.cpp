@@ -12,7 +12,7 @@ namespace simcap::cli {
 namespace {
 
 // Sweep keys and the options they set (sweep files name the voxel and noise with their unit).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 31> kSweepKeys{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 32> kSweepKeys{{
     {"method", "--method"},
     {"actor", "--actor"},
     {"silhouettes", "--silhouettes"},
@@ -38,6 +38,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 31> kSweepKe
     {"feet_sigma", "--feet-sigma"},
     {"top_sigma", "--top-sigma"},
     {"mirror_groups", "--mirror-groups"},
+    {"hand_depths", "--hand-depths"},
     {"floor", "--floor"},
     {"smooth", "--smooth"},
     {"cutoff_hz", "--cutoff"},
@@ -253,6 +254,12 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
                   "monocular: how many particle groups, largest first, have their best pose "
                   "tested reflected front to back across the camera ray (full body), 0: off")
       ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  cmd->add_option("--hand-depths", m.filter.hand_depths,
+                  "monocular: depths along the camera ray at which an arm is proposed reaching "
+                  "a hand-coloured image region no hand of the best pose explains (H5 from the "
+                  "image), 0: off")
+      ->check(CLI::Range(0, 100))
       ->capture_default_str();
   TriangulateOptions& t = o.triangulate;
   cmd->add_option("--detections", t.detections,

@@ -59,11 +59,15 @@ ArmPoints ArmKinematics::points(const State& x, int side) const {
 
 bool ArmKinematics::solve(State& x, int side, const Eigen::Vector3d& elbow,
                           const Eigen::Vector3d& wrist) const {
+  return solve_end(x, side, elbow, wrist, fore_[side]);
+}
+
+bool ArmKinematics::solve_end(State& x, int side, const Eigen::Vector3d& elbow,
+                              const Eigen::Vector3d& end, const Eigen::Vector3d& f0) const {
   const ArmPoints arm = points(x, side);
   const Eigen::Vector3d e = arm.parent.transpose() * (elbow - arm.shoulder);
-  const Eigen::Vector3d w = arm.parent.transpose() * (wrist - arm.shoulder);
+  const Eigen::Vector3d w = arm.parent.transpose() * (end - arm.shoulder);
   const Eigen::Vector3d& u0 = upper_[side];
-  const Eigen::Vector3d& f0 = fore_[side];
   // |u0 + Rx(t) f0|^2 = |w|^2 with u0 . Rx(t) f0 = A + B cos t + C sin t.
   const double A = u0.x() * f0.x();
   const double B = u0.y() * f0.y() + u0.z() * f0.z();
@@ -139,8 +143,14 @@ std::optional<Circle> swivel_circle(const ArmPoints& arm, const Eigen::Vector3d&
 std::optional<Eigen::Vector3d> ArmKinematics::swivel_elbow(const ArmPoints& arm,
                                                            const Eigen::Vector3d& wrist,
                                                            double swivel) const {
-  const double L1 = (arm.elbow - arm.shoulder).norm(), L2 = (arm.wrist - arm.elbow).norm();
-  const auto c = swivel_circle(arm, wrist, L1, L2);
+  return swivel_elbow(arm, wrist, swivel, (arm.wrist - arm.elbow).norm());
+}
+
+std::optional<Eigen::Vector3d> ArmKinematics::swivel_elbow(const ArmPoints& arm,
+                                                           const Eigen::Vector3d& end,
+                                                           double swivel, double L2) const {
+  const double L1 = (arm.elbow - arm.shoulder).norm();
+  const auto c = swivel_circle(arm, end, L1, L2);
   if (!c) return std::nullopt;
   return c->centre + c->radius * (std::cos(swivel) * c->r1 + std::sin(swivel) * c->r2);
 }
@@ -184,6 +194,48 @@ std::vector<State> ArmKinematics::flips(const State& x,
       const bool right = b == 0 || solve(y, 1, options[1][b].first, options[1][b].second);
       if (left && right) out.push_back(std::move(y));
     }
+  }
+  return out;
+}
+
+std::vector<State> ArmKinematics::reach_ray(const State& x, int side, const Eigen::Vector3d& hand,
+                                            const Eigen::Vector3d& origin,
+                                            const Eigen::Vector3d& direction, int depths) const {
+  std::vector<State> out;
+  const ArmPoints arm = points(x, side);
+  // The hand point is a fixed offset in the elbow's frame (the wrist's angles stay): the arm's
+  // IK solved for it as the end of a longer forearm puts it on the ray exactly.
+  const Eigen::Vector3d end =
+      fore_[side] + dofs_->pose(x).rotations[wrist_[side]].toRotationMatrix() * hand;
+  const double L1 = upper_[side].norm(), L2 = end.norm();
+  // The stretch of the ray within reach, shrunk a little so that its ends stay reachable with the
+  // elbow not quite straight.
+  const std::vector<double> ts = ray_sphere(origin, direction, arm.shoulder, 0.98 * (L1 + L2));
+  if (ts.empty() || ts[1] <= 0 || depths <= 0) return out;
+  const double t0 = std::max(ts[0], 0.0), t1 = ts[1];
+  // Per depth, the swivel nearest the present one that the limits allow (the shoulder's twist
+  // limits most of the circle out). The limits allow only part of the stretch (a hand far
+  // behind the shoulder is out of them): it is sampled four times as densely as asked, and as
+  // many of the allowed depths as asked are kept, spread over them.
+  const double present = swivel(arm);
+  std::vector<State> allowed;
+  const int samples = 4 * depths;
+  for (int k = 0; k < samples; ++k) {
+    const Eigen::Vector3d target = origin + (t0 + (k + 0.5) / samples * (t1 - t0)) * direction;
+    for (int turn = 0; turn < 15; ++turn) {
+      const double sw = present + (turn % 2 == 0 ? 1 : -1) * 0.4 * ((turn + 1) / 2);
+      State y = x;
+      const auto elbow = swivel_elbow(arm, target, sw, L2);
+      const bool ok = elbow && solve_end(y, side, *elbow, target, end);
+      if (ok) {
+        allowed.push_back(std::move(y));
+        break;
+      }
+    }
+  }
+  const int n = static_cast<int>(allowed.size());
+  for (int k = 0; k < std::min(n, depths); ++k) {
+    out.push_back(std::move(allowed[n <= depths ? k : (2 * k + 1) * n / (2 * depths)]));
   }
   return out;
 }

@@ -45,7 +45,24 @@ class ArmKinematics {
   // `camera_centre` (up to 15: each arm's elbow and wrist flipped or not), within the limits.
   std::vector<State> flips(const State& x, const Eigen::Vector3d& camera_centre) const;
 
+  // Poses of `side`'s arm that put its hand point (`hand`, in the wrist joint's frame) on the
+  // camera ray `origin + t direction` (unit direction): `depths` depths spread evenly over the
+  // stretch of the ray within the arm's reach, each with the elbow at the swivel nearest its
+  // present one that the limits allow (none at a depth where no swivel does); the other DOFs
+  // unchanged. The ray fixes
+  // the hand's image position, not its depth: the image cannot, so every depth is proposed.
+  std::vector<State> reach_ray(const State& x, int side, const Eigen::Vector3d& hand,
+                               const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                               int depths) const;
+
  private:
+  // solve() for the point `end` at offset `f0` in the elbow's frame instead of the wrist.
+  bool solve_end(State& x, int side, const Eigen::Vector3d& elbow, const Eigen::Vector3d& end,
+                 const Eigen::Vector3d& f0) const;
+  // swivel_elbow() for an end point at distance `L2` from the elbow.
+  std::optional<Eigen::Vector3d> swivel_elbow(const ArmPoints& arm, const Eigen::Vector3d& end,
+                                              double swivel, double L2) const;
+
   const BodyDofs* dofs_;
   int shoulder_[2], elbow_[2], wrist_[2];
   int elbow_dof_[2];

@@ -21,6 +21,21 @@ std::uint64_t mix(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
+// The class most cells of the capsules carried by `joint` have; 0 when none.
+std::uint8_t majority_class(const BodyShape& shape, const std::vector<std::uint8_t>& cell_class,
+                            int joint) {
+  std::array<int, 256> votes{};
+  for (size_t c = 0; c < shape.capsules.size(); ++c) {
+    if (shape.capsules[c].joint != joint) continue;
+    for (int k = 0; k < kCellsPerCapsule; ++k) {
+      const size_t cell = c * kCellsPerCapsule + k;
+      if (cell < cell_class.size()) ++votes[cell_class[cell]];
+    }
+  }
+  const auto top = std::max_element(votes.begin() + 1, votes.end());
+  return *top > 0 ? static_cast<std::uint8_t>(top - votes.begin()) : 0;
+}
+
 bool is_arm_chain(const BodyDofs& dofs, int i) {
   const std::string& joint = dofs.skeleton()[dofs[i].joint].name;
   return joint.ends_with("_shoulder") || joint.ends_with("_elbow");
@@ -50,7 +65,82 @@ ParticleFilter::ParticleFilter(const PoseScorer& scorer, const ArmKinematics* ar
       arms_(arms),
       mirror_(scorer.dofs()),
       mirror_tells_(tells_front_from_back(scorer.shape(), scorer.cell_class())),
-      options_(options) {}
+      options_(options) {
+  const BodyShape& shape = scorer.shape();
+  const Skeleton& skeleton = scorer.dofs().skeleton();
+  for (size_t c = 0; c < shape.capsules.size(); ++c) {
+    const std::string& joint = skeleton[shape.capsules[c].joint].name;
+    if (joint == "l_radiocarpal") hand_capsule_[0] = static_cast<int>(c);
+    if (joint == "r_radiocarpal") hand_capsule_[1] = static_cast<int>(c);
+    if (shape.capsules[c].front.squaredNorm() > 0) face_capsule_ = static_cast<int>(c);
+  }
+  const int trunk = skeleton.find("vl5");
+  if (hand_capsule_[0] >= 0 && hand_capsule_[1] >= 0 && face_capsule_ >= 0 && trunk >= 0) {
+    const auto& cells = scorer.cell_class();
+    const std::uint8_t left = majority_class(shape, cells, shape.capsules[hand_capsule_[0]].joint);
+    const std::uint8_t right = majority_class(shape, cells, shape.capsules[hand_capsule_[1]].joint);
+    if (left == right && left != majority_class(shape, cells, trunk)) hand_class_ = left;
+  }
+}
+
+std::vector<State> ParticleFilter::hand_proposals(const State& x, const FrameCues& cues) const {
+  std::vector<State> out;
+  if (!arms_ || hand_class_ == 0 || options_.hand_depths <= 0) return out;
+  const BodyDofs& dofs = scorer_->dofs();
+  const BodyShape& shape = scorer_->shape();
+  const Camera& camera = *cues.view.camera;
+  const auto g = forward_kinematics(dofs.skeleton(), dofs.pose(x));
+  const Capsule& face = shape.capsules[face_capsule_];
+  const Eigen::Vector3d face_centre = g[face.joint] * (0.5 * (face.a + face.b));
+  const double face_depth = camera.to_camera(face_centre).z();
+  const auto face_px = camera.project(face_centre);
+  if (!face_px || face_depth <= 0) return out;
+  // The face region's own far ends (the chin, the top of the head) are no hand.
+  const double face_radius = 1.5 * camera.K(0, 0) * std::max(face.ra, face.rb) / face_depth;
+  std::optional<Eigen::Vector2d> tip[2], shoulder[2];
+  double reach_px[2] = {0, 0};
+  for (int side = 0; side < 2; ++side) {
+    const Capsule& hand = shape.capsules[hand_capsule_[side]];
+    tip[side] = camera.project(g[hand.joint] * hand.b);
+    const auto base = camera.project(g[hand.joint] * hand.a);
+    shoulder[side] = camera.project(arms_->points(x, side).shoulder);
+    if (tip[side] && base) reach_px[side] = (*tip[side] - *base).norm();
+  }
+  if (!shoulder[0] || !shoulder[1]) return out;
+  const int min_area = 3;
+  const std::vector<HandBlob> blobs = hand_blobs(cues, hand_class_, min_area, 4);
+  // Each region's far end as each arm would reach it; a hand explains it when its tip projects
+  // within a hand's length (at least a working pixel) of it.
+  std::vector<std::array<Eigen::Vector2d, 2>> ends;
+  std::vector<bool> explained;
+  bool busy[2] = {false, false};
+  for (const HandBlob& b : blobs) {
+    std::array<Eigen::Vector2d, 2> end{b.farthest_from(*shoulder[0]),
+                                       b.farthest_from(*shoulder[1])};
+    bool seen = false;
+    for (int side = 0; side < 2; ++side) {
+      const double near = std::max(reach_px[side], 1.0 * cues.view.factor);
+      if (tip[side] && (*tip[side] - end[side]).norm() <= near) {
+        busy[side] = true;
+        seen = true;
+      }
+    }
+    ends.push_back(end);
+    explained.push_back(seen);
+  }
+  for (size_t k = 0; k < ends.size(); ++k) {
+    if (explained[k]) continue;
+    for (int side = 0; side < 2; ++side) {
+      if (busy[side] || (ends[k][side] - *face_px).norm() <= face_radius) continue;
+      const Capsule& hand = shape.capsules[hand_capsule_[side]];
+      for (State& y : arms_->reach_ray(x, side, hand.b, camera.centre(),
+                                       camera.unproject(ends[k][side]), options_.hand_depths)) {
+        out.push_back(std::move(y));
+      }
+    }
+  }
+  return out;
+}
 
 void ParticleFilter::reset(const State& x0, const FrameCues& cues) {
   const Energy e = scorer_->energy_of(x0, cues);
@@ -257,7 +347,9 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
   // groups.
   const bool flip = options_.h4_flipping && arms_ && options_.flip_groups > 0;
   const bool mirror = mirror_.available() && mirror_tells_ && options_.mirror_groups > 0;
-  if (flip || mirror) {
+  const bool reach = options_.h5_end_effector && arms_ && hand_class_ != 0 &&
+                     options_.hand_depths > 0 && !pool.empty();
+  if (flip || mirror || reach) {
     std::vector<int> by_size(groups.size());
     std::iota(by_size.begin(), by_size.end(), 0);
     std::stable_sort(by_size.begin(), by_size.end(),
@@ -275,7 +367,18 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
     for (int k = 0; flip && k < std::min(options_.flip_groups, G); ++k) {
       for (State& y : arms_->flips(group_best(k), centre)) tested.push_back(std::move(y));
     }
-    out.flips = static_cast<int>(tested.size());
+    if (reach) {
+      const size_t best =
+          std::min_element(pool_e.begin(), pool_e.end(),
+                           [](const Energy& a, const Energy& b) { return a.total() < b.total(); }) -
+          pool_e.begin();
+      for (State& y : hand_proposals(pool[best], current)) {
+        tested.push_back(std::move(y));
+        ++out.hand_proposals;
+      }
+    }
+    out.flips = static_cast<int>(tested.size()) - out.hand_proposals;
+    const size_t join_freely = tested.size();
     for (int k = 0; mirror && k < std::min(options_.mirror_groups, G); ++k) {
       tested.push_back(mirror_.reflect(group_best(k), centre));
     }
@@ -287,7 +390,7 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
     double lowest_pool = INFINITY;
     for (const Energy& e : pool_e) lowest_pool = std::min(lowest_pool, e.total());
     for (size_t i = 0; i < tested.size(); ++i) {
-      if (static_cast<int>(i) >= out.flips) {
+      if (i >= join_freely) {
         if (!(te[i].total() < lowest_pool)) continue;
         ++out.reflected;
       }

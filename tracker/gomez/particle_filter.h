@@ -14,6 +14,7 @@
 
 #include "tracker/gomez/arm_kinematics.h"
 #include "tracker/gomez/body_mirror.h"
+#include "tracker/gomez/hand_blobs.h"
 #include "tracker/gomez/pose_scorer.h"
 
 namespace simcap::tracker::gomez {
@@ -45,6 +46,13 @@ struct FilterOptions {
   // (BodyMirror::reflect), joining the pool only when it beats every particle, and only on a
   // body whose colours tell front from back (tells_front_from_back); 0 is off.
   int mirror_groups = 1;
+  // H5 driven by the image (simcap's addition): the far ends of the regions of the hands' colour
+  // class (hand_blobs) that no hand of the best particle explains are reached by the arms whose
+  // hand explains none, at this many depths along their camera ray (ArmKinematics::reach_ray);
+  // the poses join the pool as H4's flips do. A lost arm comes back from where the image shows
+  // its hand, not from diffusion about the last pose. Off on a body whose hands have the trunk's
+  // class (no region of their own); 0 is off.
+  int hand_depths = 4;
   std::uint64_t seed = 1;
 };
 
@@ -58,6 +66,7 @@ struct FilterStep {
   int simplex_groups = 0;                // of which refined by Nelder-Mead (H3)
   int flips = 0;                         // kinematic flips tested (H4)
   int reflected = 0;                     // front/back reflections that joined (beat every particle)
+  int hand_proposals = 0;                // image-driven hand proposals tested (H5)
   std::array<bool, kPartCount> moved{};  // H2's motion detection
 };
 
@@ -85,6 +94,8 @@ class ParticleFilter {
   struct Rng;
   State diffuse(const State& x, const std::array<bool, kPartCount>& parts, Rng& rng,
                 const Eigen::Matrix3d& camera_to_world) const;
+  // Poses of `x` with a free arm reaching an unexplained hand region of `cues` (hand_depths).
+  std::vector<State> hand_proposals(const State& x, const FrameCues& cues) const;
   // Pixels of each part of `x` whose colour class the image shows there (full resolution).
   std::array<double, kPartCount> part_overlap(const State& x, const FrameCues& cues) const;
 
@@ -92,6 +103,11 @@ class ParticleFilter {
   const ArmKinematics* arms_;
   BodyMirror mirror_;
   bool mirror_tells_ = false;  // tells_front_from_back of the scorer's body
+  // The hands' capsules (left, right; -1: none), their colour class when it differs from the
+  // trunk's (0: no hand proposals), and the face's capsule.
+  int hand_capsule_[2] = {-1, -1};
+  std::uint8_t hand_class_ = 0;
+  int face_capsule_ = -1;
   FilterOptions options_;
   std::vector<State> particles_;
   std::vector<double> energies_;

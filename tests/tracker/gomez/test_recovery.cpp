@@ -129,6 +129,48 @@ TEST(Recovery, TheParticleFilterNeverLosesItsStartOnAStillImage) {
   EXPECT_LE(run.end.region, run.start.region + 1e-9);
 }
 
+// H5 from the image: the left arm started hanging while the image shows it raised sideways. The
+// hand's skin region lies far from where any child of the hanging arm reaches; the proposals
+// that put the hand on that region's far end bring the arm back, which diffusion alone does not.
+TEST(Recovery, HandProposalsBringBackALostArm) {
+  const State truth = [] {
+    const struct Setup s;
+    return s.truth;
+  }();
+  const auto run = [&](int hand_depths) {
+    struct Setup s;
+    const Rendered r = draw(*s.body, s.truth, s.camera);
+    MonocularSettings settings;
+    settings.smoothing = 0;
+    settings.filter.particles = 60;
+    settings.filter.h2_partitioned = false;
+    settings.filter.hand_depths = hand_depths;
+    State start = s.truth;
+    start[s.body->dofs.require("l_shoulder_abduction")] = 0;
+    start[s.body->dofs.require("l_elbow_flexion")] = 0;
+    start = s.body->dofs.clamp(start);
+    MonocularTracker tracker(std::move(s.body), s.truth, s.camera, r.image, r.silhouette, settings);
+    tracker.track(r.image, r.silhouette, 0);
+    TrackedFrame t = tracker.track(r.image, r.silhouette, 1, &start);
+    int proposals = t.filter.hand_proposals;
+    for (int frame = 2; frame < 4; ++frame) {
+      t = tracker.track(r.image, r.silhouette, frame);
+      proposals += t.filter.hand_proposals;
+    }
+    const Body& body = tracker.body();
+    const auto a = joint_positions(body.skeleton, body.dofs.pose(t.estimate));
+    const auto b = joint_positions(body.skeleton, body.dofs.pose(truth));
+    const int w = body.skeleton.require("l_radiocarpal");
+    return std::make_pair((a[w] - b[w]).norm(), proposals);
+  };
+  const auto [without, none] = run(0);
+  const auto [with, proposed] = run(4);
+  EXPECT_EQ(none, 0);
+  EXPECT_GT(proposed, 0);
+  EXPECT_GT(without, 0.2);
+  EXPECT_LT(with, 0.1) << "without proposals " << without;
+}
+
 // The feet prior on the body itself: at the drawn pose the body's lowest and highest extents
 // meet the silhouette's; moved half a metre further from the camera along the floor, the body's
 // feet rise in the image (the floor keeps them on it) and the prior's energy grows.
