@@ -107,8 +107,9 @@ std::vector<State> ParticleFilter::hand_proposals(const State& x, const FrameCue
     if (tip[side] && base) reach_px[side] = (*tip[side] - *base).norm();
   }
   if (!shoulder[0] || !shoulder[1]) return out;
-  const int min_area = 3;
-  const std::vector<HandBlob> blobs = hand_blobs(cues, hand_class_, min_area, 4);
+  // A hand at the working resolution (the person ~120 px tall) is about 3 x 10 pixels: a region
+  // of 3 may be a hand half hidden; more than 4 regions are specks of skin-like colour.
+  const std::vector<HandBlob> blobs = hand_blobs(cues, hand_class_, 3, 4);
   // Each region's far end as each arm would reach it; a hand explains it when its tip projects
   // within a hand's length (at least a working pixel) of it.
   std::vector<std::array<Eigen::Vector2d, 2>> ends;
@@ -344,7 +345,7 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
   }
 
   // Kinematic flipping (H4) and the front/back reflection of the best particle of the largest
-  // groups.
+  // groups, and the hand proposals (H5 from the image) of the best particle of all.
   const bool flip = options_.h4_flipping && arms_ && options_.flip_groups > 0;
   const bool mirror = mirror_.available() && mirror_tells_ && options_.mirror_groups > 0;
   const bool reach = options_.h5_end_effector && arms_ && hand_class_ != 0 &&

@@ -3,8 +3,9 @@
 // weight-proportional resampling with elitism, H2 hierarchical partitioned diffusion of only the
 // parts whose region overlap dropped, H3 groups of at least n + 1 children turned into a
 // Nelder-Mead simplex, H4 kinematic flipping of the arms about the camera rays, H5 arms diffused
-// as wrist positions in camera coordinates plus the elbow's swivel angle; and simcap's addition
-// for a walking body, its reflection across the camera ray (front/back) tested as H4 tests flips.
+// as wrist positions in camera coordinates plus the elbow's swivel angle; and simcap's additions:
+// arms proposed reaching the hands' image regions (H5 from the image), and for a walking body its
+// reflection across the camera ray (front/back), tested as H4 tests flips.
 #pragma once
 
 #include <Eigen/Core>
