@@ -53,7 +53,7 @@ struct FilterOptions {
   // the poses join the pool as H4's flips do. A lost arm comes back from where the image shows
   // its hand, not from diffusion about the last pose. Off on a body whose hands have the trunk's
   // class (no region of their own); 0 is off.
-  int hand_depths = 4;
+  int hand_depths = 2;
   std::uint64_t seed = 1;
 };
 
