@@ -128,7 +128,7 @@ AutoStart auto_start(const std::vector<Observation>& first, const TrackerOptions
   dims = dims_of(scale, shoulders);
   MoschiniTracker tracker(dims, typical_surface(dims), fine);
   tracker.start(upright);
-  return {dims, tracker.step(first.front()).pose};
+  return {dims, tracker.step(first.front()).pose, ankle_height_from_height(scale * height)};
 }
 
 }  // namespace simcap::tracker

@@ -12,6 +12,9 @@ namespace simcap::tracker {
 struct AutoStart {
   BodyDimensions dims;
   StickPose pose;  // on the first frame
+  // How high the ankles of a person of the stature found stand above the floor: the lowest
+  // ankle of the first frames tracked should stand there, the legs' length says how far.
+  double ankle_height = 0;
 };
 
 struct AutoStartOptions {

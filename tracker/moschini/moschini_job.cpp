@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <opencv2/core/utility.hpp>
 #include <optional>
 
@@ -59,6 +60,23 @@ constexpr int kStartFrames = 5;
 // the centerline's offsets again and from then on trusts the silhouettes, as --init gt does
 // from the first frame (MOSCHINI.md, "`--init auto` now"): 3 and 5 did worse on main's start.
 constexpr int kRefitFrame = 4;
+
+// The lower ankle's height at `pose`.
+double ankle_of(const StickModel& model, const StickPose& pose) {
+  const StickGeometry g = model.geometry(pose);
+  return std::min(g.distal[kLCalf].y(), g.distal[kRCalf].y());
+}
+
+// `dims` with the thighs and calves lengthened in proportion by `by` metres in all (shortened
+// when negative), by at most a tenth. At the refit --init auto makes the legs those that put
+// the lowest ankle of the frames so far where it stands on the floor: the silhouettes'
+// proportions search leaves them 2-4% short, the feet afloat (MOSCHINI.md).
+BodyDimensions legs_longer(BodyDimensions dims, double by) {
+  const double legs = dims.thigh + dims.calf;
+  const double factor = 1 + std::clamp(by, -0.1 * legs, 0.1 * legs) / legs;
+  dims.thigh *= factor, dims.calf *= factor;
+  return dims;
+}
 
 }  // namespace
 
@@ -114,6 +132,8 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
   std::optional<MoschiniTracker> tracker;
   // --init auto: the frame at which the tracker restarts with capsules fitted to its own pose.
   std::optional<int> refit_frame;
+  // --init auto: the lowest ankle of the frames up to the refit, and where it should stand.
+  double lowest_ankle = std::numeric_limits<double>::infinity(), ankle_height = 0;
   // Where the tracked body was last: the gate keeps that person's part of the silhouettes
   // when someone else is in view too (person_gate.h). It runs only when the capture has other
   // people (scene.yaml's actors, the capture's metadata like its room): alone, a person's hull
@@ -192,6 +212,7 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
     last_body = place(surface, model.geometry(start.pose));
     // Alone in view only: with others about, the silhouettes hold their pixels too.
     if (!others && static_cast<int>(frames.size()) > kRefitFrame) refit_frame = frames[kRefitFrame];
+    ankle_height = start.ankle_height;
   }
 
   // Frames are observed in parallel; OpenCV's own worker threads inside each would only compete
@@ -237,11 +258,14 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
                    last_body = place(tracker->surface(), tracker->model().geometry(step.pose));
                    if (occlusion) occlusion->observe(*last_body, obs->silhouettes);
                    sink(ds, *obs, step, *tracker);
+                   if (refit_frame && obs->frame <= *refit_frame)
+                     lowest_ankle = std::min(lowest_ankle, ankle_of(tracker->model(), step.pose));
                    if (obs->frame == refit_frame) {
                      // The pose tracked from a right start is near enough the truth for the
                      // capsules and the offsets that --init gt measures on its first frame.
-                     const FittedBody body =
-                         fit_body(tracker->model().dimensions(), topt, step.pose, *obs);
+                     const BodyDimensions dims =
+                         legs_longer(tracker->model().dimensions(), lowest_ankle - ankle_height);
+                     const FittedBody body = fit_body(dims, topt, step.pose, *obs);
                      topt.trust_silhouettes = true;
                      tracker.emplace(body.dims, body.surface, topt);
                      tracker->start(step.pose);

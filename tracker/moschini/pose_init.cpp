@@ -264,14 +264,29 @@ std::array<Eigen::Vector3d, kSegmentCount> measure_centerline_offsets(
   return offsets;
 }
 
-BodyDimensions dimensions_from_height(double height_m) {
+namespace {
+
+// simcap's humanoid of `height_m` standing in its neutral pose on the floor y = 0.
+NamedJoints neutral_humanoid(double height_m) {
   BodyParameters body;
   body.height = height_m;
   const Skeleton s = build_humanoid(body);
   const auto p = joint_positions(s, Pose::neutral(s));
   NamedJoints joints;
   for (int i = 0; i < s.size(); ++i) joints[s[i].name] = p[i];
-  return dimensions_from_joints(joints, "humanoid of height " + std::to_string(height_m));
+  return joints;
+}
+
+}  // namespace
+
+BodyDimensions dimensions_from_height(double height_m) {
+  return dimensions_from_joints(neutral_humanoid(height_m),
+                                "humanoid of height " + std::to_string(height_m));
+}
+
+double ankle_height_from_height(double height_m) {
+  const NamedJoints joints = neutral_humanoid(height_m);
+  return 0.5 * (joints.at("l_talocrural").y() + joints.at("r_talocrural").y());
 }
 
 UprightCue upright_cue(const Occupancy& hull, const BodyDimensions& dims) {

@@ -41,6 +41,8 @@ std::array<Eigen::Vector3d, kSegmentCount> measure_centerline_offsets(
 // and d_H = 0.7 describe HumanEva's joint centres: on H-Anim's they put the shoulders 8 cm low
 // and the hips 4 cm wide.)
 BodyDimensions dimensions_from_height(double height_m);
+// How high that humanoid's ankles stand above the floor.
+double ankle_height_from_height(double height_m);
 
 // What the hull says about a person standing upright on the floor y = 0.
 struct UprightCue {

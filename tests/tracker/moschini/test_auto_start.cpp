@@ -41,5 +41,13 @@ TEST(AutoStart, MeasuresTheShouldersHeight) {
   }
 }
 
+// Where --init auto's refit expects the lowest ankle: Winter's anthropometric table puts the
+// ankle at 0.039 of the stature above the floor.
+TEST(AutoStart, AnkleHeightIsWintersFractionOfTheStature) {
+  for (const double height : {1.5, 1.75, 2.0}) {
+    EXPECT_NEAR(ankle_height_from_height(height), 0.039 * height, 0.005) << height;
+  }
+}
+
 }  // namespace
 }  // namespace simcap::tracker
