@@ -16,6 +16,9 @@ struct RenderBenchOptions {
   int frames = 60;                     // frames of the full render (with image writing)
   int ray_frames = 20;                 // frames spread over those for the ray measurements
   std::vector<std::string> overrides;  // scene overrides (load_scene)
+  // > 1: also the cost of motion blur, ray_frames frames captured with this many samples per
+  // pixel over the whole frame period (render.shutter 1) and with one sample, alternated.
+  int blur_samples = 0;
   bool quiet = false;
 };
 
@@ -46,6 +49,9 @@ struct RenderBenchResult {
     double update_ms, render_ms;
   };
   std::vector<BvhUpdate> bvh_updates;
+  // Motion blur (blur_samples > 1): CPU milliseconds per frame set of RenderSetup::capture
+  // (bodies posed over the exposure, ground truth, every camera rendered; no writing).
+  double blur_cpu_ms = 0, one_sample_cpu_ms = 0;
 };
 
 RenderBenchResult run_render_benchmark(const std::filesystem::path& scene_file,

@@ -58,7 +58,7 @@ void CameraRays::jittered_block(int px, int py, const float* jx, const float* jy
                                 float* dir_x, float* dir_y, float* dir_z) const {
   // jittered_ray() lane by lane, in structure-of-arrays form so that the arithmetic vectorises:
   // the corner loads are gathered first, then every operation runs in jittered_ray's order
-  // (Eigen sums a 3-term product or squared norm as a0 + (a1 + a2)), bit for bit.
+  // (Eigen sums a 3-term product as a0 + (a1 + a2)), bit for bit.
   const int w1 = camera_.width + 1;
   alignas(64) float x00[kLanes], y00[kLanes], x01[kLanes], y01[kLanes];
   alignas(64) float x10[kLanes], y10[kLanes], x11[kLanes], y11[kLanes];
@@ -75,28 +75,30 @@ void CameraRays::jittered_block(int px, int py, const float* jx, const float* jy
     x11[k] = corners_[c + w1 + 1].x();
     y11[k] = corners_[c + w1 + 1].y();
   }
-  const Eigen::Matrix3f& m = camera_to_world_;
-  alignas(64) float squared[kLanes];
+  // Inputs, matrix and results in locals: stores through the output pointers could alias the
+  // others, which kept the loop scalar.
+  const Eigen::Matrix3f m = camera_to_world_;
+  const float m00 = m(0, 0), m01 = m(0, 1), m02 = m(0, 2), m10 = m(1, 0), m11 = m(1, 1);
+  const float m12 = m(1, 2), m20 = m(2, 0), m21 = m(2, 1), m22 = m(2, 2);
+  alignas(64) float ox[kLanes], oy[kLanes], oz[kLanes], jitter_x[kLanes], jitter_y[kLanes];
+  alignas(64) int inside[kLanes];
+  std::copy_n(jx, kLanes, jitter_x);
+  std::copy_n(jy, kLanes, jitter_y);
+  std::copy_n(valid, kLanes, inside);
   for (int k = 0; k < kLanes; ++k) {
-    const float ax = jx[k] + 0.5f, ay = jy[k] + 0.5f;
+    const float ax = jitter_x[k] + 0.5f, ay = jitter_y[k] + 0.5f;
     const float x =
         (1 - ay) * ((1 - ax) * x00[k] + ax * x01[k]) + ay * ((1 - ax) * x10[k] + ax * x11[k]);
     const float y =
         (1 - ay) * ((1 - ax) * y00[k] + ax * y01[k]) + ay * ((1 - ax) * y10[k] + ax * y11[k]);
-    const bool in = valid[k] != 0;
-    dir_x[k] = in ? m(0, 0) * x + (m(0, 1) * y + m(0, 2)) : 0.f;
-    dir_y[k] = in ? m(1, 0) * x + (m(1, 1) * y + m(1, 2)) : 0.f;
-    dir_z[k] = in ? m(2, 0) * x + (m(2, 1) * y + m(2, 2)) : 1.f;
-    squared[k] = in ? dir_x[k] * dir_x[k] + (dir_y[k] * dir_y[k] + dir_z[k] * dir_z[k]) : 0.f;
+    const bool in = inside[k] != 0;
+    ox[k] = in ? m00 * x + (m01 * y + m02) : 0.f;
+    oy[k] = in ? m10 * x + (m11 * y + m12) : 0.f;
+    oz[k] = in ? m20 * x + (m21 * y + m22) : 1.f;
   }
-  // Eigen's normalized(), four lanes at a time: the square roots and divisions are what cost,
-  // and each lane's are the same IEEE operations as jittered_direction's.
-  for (int k = 0; k < kLanes; ++k) {
-    const float norm = squared[k] > 0 ? std::sqrt(squared[k]) : 1.f;
-    dir_x[k] /= norm;
-    dir_y[k] /= norm;
-    dir_z[k] /= norm;
-  }
+  std::copy_n(ox, kLanes, dir_x);
+  std::copy_n(oy, kLanes, dir_y);
+  std::copy_n(oz, kLanes, dir_z);
 }
 
 }  // namespace simcap

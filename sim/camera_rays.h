@@ -43,16 +43,15 @@ class CameraRays {
   // Unit world direction through (x + jx, y + jy) with jx, jy in [-0.5, 0.5] (anti-aliasing
   // samples), interpolated bilinearly between the undistorted pixel corners.
   Eigen::Vector3f jittered_direction(int x, int y, float jx, float jy) const;
-  // The same for the 16 pixels of the block at (px, py), lanes as in block(): bit-identical to
-  // jittered_direction lane by lane, with the normalisation vectorised. Lanes where `valid` is 0
-  // get (0, 0, 1).
+  // The world direction through (x + jx, y + jy), not normalised (its camera z is 1).
+  Eigen::Vector3f jittered_ray(int x, int y, float jx, float jy) const;
+  // jittered_ray for the 16 pixels of the block at (px, py), lanes as in block(), bit-identical
+  // lane by lane and vectorised: Embree takes directions of any length, and normalising cost as
+  // much as the rest. Lanes where `valid` is 0 get (0, 0, 1).
   void jittered_block(int px, int py, const float* jx, const float* jy, const int* valid,
                       float* dir_x, float* dir_y, float* dir_z) const;
 
  private:
-  // The world direction through (x + jx, y + jy), not yet normalised.
-  Eigen::Vector3f jittered_ray(int x, int y, float jx, float jy) const;
-
   Camera camera_;
   Eigen::Vector3f origin_;
   Eigen::Matrix3f camera_to_world_;

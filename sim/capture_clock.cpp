@@ -33,6 +33,7 @@ CaptureClock::CaptureClock(const Scene& scene)
     time_steps_ = std::min(129, 1 + static_cast<int>(std::ceil(window * fps_ * kStepsPerFrame)));
   } else if (exposure_s_ > 0) {
     time_steps_ = 3;
+    still_step_ = 1;
   }
   for (size_t c = 0; c < offset_s_.size(); ++c) {
     auto g = std::find_if(groups_.begin(), groups_.end(),

@@ -60,6 +60,10 @@ class CaptureClock {
   // instead of five steps at shutter 1 halve the build (53 -> 30 ms a frame on studio4).
   int time_steps() const { return time_steps_; }
   static constexpr int kStepsPerFrame = 4;
+  // The time step every label ray's time falls on (the exposure's middle, without a rolling
+  // shutter), or -1: the renderer traces those rays against a still copy of that step
+  // (EmbreeScene's still scene), only the other blur samples paying for motion blur.
+  int still_step() const { return still_step_; }
 
  private:
   double fps_;
@@ -69,6 +73,7 @@ class CaptureClock {
   double readout_s_ = 0, exposure_s_ = 0;
   bool still_ = true;
   int time_steps_ = 1;
+  int still_step_ = -1;
   std::vector<Group> groups_;
   std::vector<int> group_of_;
 };

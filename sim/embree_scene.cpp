@@ -38,29 +38,52 @@ EmbreeScene::Entry EmbreeScene::actor_entry(int actor) {
   return e;
 }
 
-EmbreeScene::EmbreeScene(BodyBvhUpdate body_update, int time_steps)
-    : body_update_(body_update), time_steps_(time_steps) {
+namespace {
+
+// A low-quality scene build makes Embree keep one BVH per geometry under a small top-level
+// BVH, so a frame only updates the bodies' BVHs; the static geometry's stays as built.
+RTCScene new_dynamic_scene(RTCDevice device) {
+  RTCScene scene = rtcNewScene(device);
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_LOW);
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_DYNAMIC);
+  return scene;
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene(BodyBvhUpdate body_update, int time_steps, int still_step)
+    : body_update_(body_update), time_steps_(time_steps), still_step_(still_step) {
   if (time_steps < 1 || time_steps > RTC_MAX_TIME_STEP_COUNT) {
     throw Error("Embree: time steps must be in [1, " + std::to_string(RTC_MAX_TIME_STEP_COUNT) +
                 "], got " + std::to_string(time_steps));
   }
+  if (still_step >= time_steps || (still_step >= 0 && time_steps == 1)) {
+    throw Error("Embree: no still copy of time step " + std::to_string(still_step) + " of " +
+                std::to_string(time_steps));
+  }
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw Error("Embree: cannot create a device");
-  scene_ = rtcNewScene(device_);
-  // A low-quality scene build makes Embree keep one BVH per geometry under a small top-level
-  // BVH, so a frame only updates the bodies' BVHs; the static geometry's stays as built.
-  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_LOW);
-  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_DYNAMIC);
+  scene_ = new_dynamic_scene(device_);
+  if (still_step >= 0) {
+    still_scene_ = new_dynamic_scene(device_);
+    // The time Embree gives step s of n: s / (n - 1), in float as the rays carry it.
+    still_time_ = static_cast<float>(still_step) / static_cast<float>(time_steps - 1);
+  }
 }
 
 EmbreeScene::~EmbreeScene() {
   for (auto& a : actors_) {
-    if (a.geometry && bodies_[a.body]->instanced_scene) rtcReleaseGeometry(a.geometry);
+    if (!bodies_[a.body]->instanced_scene) continue;
+    if (a.geometry) rtcReleaseGeometry(a.geometry);
+    if (a.still_geometry) rtcReleaseGeometry(a.still_geometry);
   }
   for (auto& b : bodies_) {
     rtcReleaseGeometry(b->geometry);
     if (b->instanced_scene) rtcReleaseScene(b->instanced_scene);
+    if (b->still_geometry) rtcReleaseGeometry(b->still_geometry);
+    if (b->still_instanced_scene) rtcReleaseScene(b->still_instanced_scene);
   }
+  if (still_scene_) rtcReleaseScene(still_scene_);
   rtcReleaseScene(scene_);
   rtcReleaseDevice(device_);
 }
@@ -72,8 +95,9 @@ void EmbreeScene::check_device(const char* what) const {
   }
 }
 
-unsigned EmbreeScene::attach(RTCGeometry geometry, Entry entry) {
+unsigned EmbreeScene::attach(RTCGeometry geometry, RTCGeometry still, Entry entry) {
   const unsigned id = rtcAttachGeometry(scene_, geometry);
+  if (still_scene_ && still) rtcAttachGeometryByID(still_scene_, still, id);
   if (entries_.size() <= id) entries_.resize(id + 1);
   entries_[id] = entry;
   return id;
@@ -103,7 +127,7 @@ void EmbreeScene::add_static(const TriangleMesh& mesh, const StaticLook& look, b
   e.tex_u = look.tex_u;
   e.tex_v = look.tex_v;
   statics_.push_back(std::move(s));
-  attach(g, e);
+  attach(g, g, e);
   rtcReleaseGeometry(g);
   check_device("adding static geometry");
 }
@@ -134,11 +158,27 @@ int EmbreeScene::add_body(const BodyMesh& mesh, bool instanced) {
       body->vertex_faces[fill[v]++] = static_cast<std::uint32_t>(f);
   }
 
+  body->geometry = new_body_geometry(*body, 0, time_steps_);
+  if (instanced) body->instanced_scene = new_body_scene(body->geometry);
+  if (still_scene_) {
+    body->still_geometry = new_body_geometry(*body, still_step_, 1);
+    if (instanced) body->still_instanced_scene = new_body_scene(body->still_geometry);
+  }
+  bodies_.push_back(std::move(body));
+  body_updated(static_cast<int>(bodies_.size()) - 1);
+  check_device("adding a body");
+  return static_cast<int>(bodies_.size()) - 1;
+}
+
+RTCGeometry EmbreeScene::new_body_geometry(Body& body, int first_step, int steps) {
+  const auto& mesh = *body.mesh;
+  const size_t nv = mesh.vertices.size(), nt = mesh.triangles.size();
   RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-  if (steps > 1) rtcSetGeometryTimeStepCount(g, time_steps_);
-  for (size_t s = 0; s < steps; ++s) {
+  if (steps > 1) rtcSetGeometryTimeStepCount(g, static_cast<unsigned>(steps));
+  for (int s = 0; s < steps; ++s) {
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, static_cast<unsigned>(s),
-                               RTC_FORMAT_FLOAT3, body->vertices.data(), s * 3 * nv * sizeof(float),
+                               RTC_FORMAT_FLOAT3, body.vertices.data(),
+                               static_cast<size_t>(first_step + s) * 3 * nv * sizeof(float),
                                3 * sizeof(float), nv);
   }
   auto* t = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
@@ -153,17 +193,13 @@ int EmbreeScene::add_body(const BodyMesh& mesh, bool instanced) {
   rtcSetGeometryBuildQuality(
       g, body_update_ == BodyBvhUpdate::refit ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_LOW);
   rtcSetGeometryMask(g, kShadowCasterMask);
-  body->geometry = g;
-  if (instanced) {
-    body->instanced_scene = rtcNewScene(device_);
-    rtcSetSceneBuildQuality(body->instanced_scene, RTC_BUILD_QUALITY_LOW);
-    rtcSetSceneFlags(body->instanced_scene, RTC_SCENE_FLAG_DYNAMIC);
-    rtcAttachGeometry(body->instanced_scene, g);
-  }
-  bodies_.push_back(std::move(body));
-  body_updated(static_cast<int>(bodies_.size()) - 1);
-  check_device("adding a body");
-  return static_cast<int>(bodies_.size()) - 1;
+  return g;
+}
+
+RTCScene EmbreeScene::new_body_scene(RTCGeometry body_geometry) {
+  RTCScene scene = new_dynamic_scene(device_);
+  rtcAttachGeometry(scene, body_geometry);
+  return scene;
 }
 
 int EmbreeScene::add_actor(int body_index, const std::array<Rgb, kMaterialRegionCount>& colors) {
@@ -173,16 +209,22 @@ int EmbreeScene::add_actor(int body_index, const std::array<Rgb, kMaterialRegion
   for (int i = 0; i < kMaterialRegionCount; ++i) a.albedo[i] = srgb_to_linear(colors[i]);
   const int index = static_cast<int>(actors_.size());
   if (body.instanced_scene) {
-    a.geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryMask(a.geometry, kShadowCasterMask);
-    rtcSetGeometryInstancedScene(a.geometry, body.instanced_scene);
-    attach(a.geometry, actor_entry(index));
+    auto instance = [this](RTCScene of) {
+      RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+      rtcSetGeometryMask(g, kShadowCasterMask);
+      rtcSetGeometryInstancedScene(g, of);
+      return g;
+    };
+    a.geometry = instance(body.instanced_scene);
+    if (body.still_instanced_scene) a.still_geometry = instance(body.still_instanced_scene);
   } else {
     if (body.attached) throw Error("a body that is not instanced can be worn by one actor only");
     a.geometry = body.geometry;
-    attach(a.geometry, actor_entry(index));
+    a.still_geometry = body.still_geometry;
     body.attached = true;
   }
+  attach(a.geometry, a.still_geometry, actor_entry(index));
+  update_bounds(a);
   actors_.push_back(a);
   set_actor_transform(index, Eigen::Isometry3d::Identity());
   check_device("adding an actor");
@@ -227,30 +269,65 @@ void EmbreeScene::body_updated(int body_index) {
   }
   rtcCommitGeometry(b.geometry);
   if (b.instanced_scene) rtcCommitScene(b.instanced_scene);
+  b.bounds.setEmpty();
+  for (size_t i = 0; i < nv * static_cast<size_t>(time_steps_); ++i) {
+    b.bounds.extend(
+        Eigen::Vector3f(b.vertices[3 * i], b.vertices[3 * i + 1], b.vertices[3 * i + 2]));
+  }
+  for (Actor& a : actors_) {
+    if (a.body == body_index) update_bounds(a);
+  }
+  if (b.still_geometry) {
+    rtcUpdateGeometryBuffer(b.still_geometry, RTC_BUFFER_TYPE_VERTEX, 0);
+    rtcCommitGeometry(b.still_geometry);
+    if (b.still_instanced_scene) rtcCommitScene(b.still_instanced_scene);
+  }
 }
 
 void EmbreeScene::set_actor_transform(int actor, const Eigen::Isometry3d& object_to_world) {
   Actor& a = actors_.at(actor);
   if (!bodies_[a.body]->instanced_scene) return;
   const Eigen::Matrix<float, 3, 4> m = object_to_world.matrix().topRows<3>().cast<float>();
-  rtcSetGeometryTransform(a.geometry, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, m.data());
-  rtcCommitGeometry(a.geometry);
+  for (RTCGeometry g : {a.geometry, a.still_geometry}) {
+    if (!g) continue;
+    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, m.data());
+    rtcCommitGeometry(g);
+  }
   a.rotation = m.leftCols<3>();
+  a.object_to_world.matrix().topRows<3>() = m;
+  update_bounds(a);
+}
+
+void EmbreeScene::update_bounds(Actor& a) {
+  const Eigen::AlignedBox3f& object = bodies_[a.body]->bounds;
+  a.bounds.setEmpty();
+  if (object.isEmpty()) return;
+  for (int corner = 0; corner < 8; ++corner) {
+    a.bounds.extend(a.object_to_world *
+                    object.corner(static_cast<Eigen::AlignedBox3f::CornerType>(corner)));
+  }
+  // Rounding in the slab test and in Embree's own is far below a millimetre.
+  a.bounds.min().array() -= 1e-3f;
+  a.bounds.max().array() += 1e-3f;
 }
 
 void EmbreeScene::set_actors_visible(bool visible) {
   for (auto& a : actors_) {
-    if (visible) {
-      rtcEnableGeometry(a.geometry);
-    } else {
-      rtcDisableGeometry(a.geometry);
+    for (RTCGeometry g : {a.geometry, a.still_geometry}) {
+      if (!g) continue;
+      if (visible) {
+        rtcEnableGeometry(g);
+      } else {
+        rtcDisableGeometry(g);
+      }
+      rtcCommitGeometry(g);
     }
-    rtcCommitGeometry(a.geometry);
   }
 }
 
 void EmbreeScene::commit() {
   rtcCommitScene(scene_);
+  if (still_scene_) rtcCommitScene(still_scene_);
   check_device("building the scene");
 }
 

@@ -32,7 +32,7 @@ Visibility classify(const CameraRays& rays, const EmbreeScene& scene, int actor,
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  rtcIntersect1(scene.handle(), &context, &rh);
+  rtcIntersect1(scene.scene_at(rh.ray.time), &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return Visibility::visible;
   const double hit_depth = static_cast<double>(rh.ray.tfar) * rays.z_scale(x, y);
   HitRecord hit;

@@ -42,7 +42,7 @@ RenderSetup::RenderSetup(const Scene& scene, BodyBvhUpdate body_update)
     : scene_(scene),
       clock_(scene_),
       actors_(scene_),
-      embree_(body_update, clock_.time_steps()),
+      embree_(body_update, clock_.time_steps(), clock_.still_step()),
       cameras_(make_rays(scene_.cameras)),
       renderer_(embree_, scene_) {
   add_room_and_occluders(embree_, scene_);

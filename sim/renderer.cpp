@@ -3,6 +3,7 @@
 #include <oneapi/tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstring>
@@ -22,6 +23,29 @@ enum Stream : std::uint64_t { kJitter = 1, kRgbNoise = 2, kDepthNoise = 3, kShut
 
 // Rec. 709 luminance of linear RGB, what auto exposure meters.
 constexpr float kLuma[3] = {0.2126f, 0.7152f, 0.0722f};
+
+// x in [0, 2) wrapped into [0, 1).
+inline float wrap01(float x) {
+  return x >= 1.f ? x - 1.f : x;
+}
+
+// Sample s > 0 of every pixel: the s-th point of the R3 sequence (Roberts 2018, "The unreasonable
+// effectiveness of quasirandom sequences": the fractional parts of s / phi, s / phi^2, s / phi^3
+// with phi^4 = phi + 1), which fills the cube evenly for every sample count. Each pixel shifts
+// it by its own random offset (Cranley-Patterson rotation), so pixels do not share a pattern.
+std::vector<std::array<float, 3>> sample_pattern(int samples) {
+  constexpr double phi = 1.2207440846057596;
+  std::vector<std::array<float, 3>> out(samples);
+  for (int s = 1; s < samples; ++s) {
+    double a = 1;
+    for (int d = 0; d < 3; ++d) {
+      a /= phi;
+      const double x = s * a;
+      out[s][d] = std::min(static_cast<float>(x - std::floor(x)), 0x1.fffffep-1f);
+    }
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -45,7 +69,8 @@ Renderer::Renderer(const EmbreeScene& embree, const Scene& scene)
       normals_(scene.render.normals),
       auto_exposure_(scene.timing.auto_exposure),
       fps_(scene.render.fps),
-      first_frame_(scene.render.first_frame) {}
+      first_frame_(scene.render.first_frame),
+      pattern_(sample_pattern(samples_)) {}
 
 std::vector<Renderer::LightSource> Renderer::lights_at(double time_s) const {
   std::vector<LightSource> out;
@@ -155,12 +180,14 @@ RayCounts Renderer::render(const std::vector<Shot>& shots, int frame,
 struct Renderer::Lanes {
   static constexpr int N = CameraRays::kLanes;
   RayHitPacket<N> packet;
+  RTCScene scene = nullptr;  // what this sample's camera rays trace
+  bool spread = false;       // their times differ (blur samples, rolling shutter)
   alignas(64) int valid[N], hit[N];
   alignas(64) float red[N], green[N], blue[N];  // radiance, summed over samples
   alignas(64) float albedo[3][N], normal[3][N], geometric[3][N], position[3][N];
   int part[N], actor[N];
-  // The random streams continued by each lane's pixel, which every sample continues in turn.
-  std::uint64_t jitter_key[N], shutter_key[N];
+  // Each lane's pixel's random shift of the sample pattern: x and y jitter, time in the part.
+  alignas(64) float shift[3][N];
 };
 
 void Renderer::trace_camera_rays(const ShotState& shot, int px, int py, int sample,
@@ -175,11 +202,10 @@ void Renderer::trace_camera_rays(const ShotState& shot, int px, int py, int samp
     std::copy_n(block + 2 * N, N, ray.dir_z);
   } else {
     alignas(64) float jx[N], jy[N];
+    const std::array<float, 3>& p = pattern_[sample];
     for (int k = 0; k < N; ++k) {
-      const std::uint64_t bits =
-          random_bits_after(l.jitter_key[k], {static_cast<std::uint64_t>(sample)});
-      jx[k] = uniform01(bits) - 0.5f;
-      jy[k] = uniform01(mix64(bits)) - 0.5f;
+      jx[k] = wrap01(l.shift[0][k] + p[0]) - 0.5f;
+      jy[k] = wrap01(l.shift[1][k] + p[1]) - 0.5f;
     }
     rays.jittered_block(px, py, jx, jy, l.valid, ray.dir_x, ray.dir_y, ray.dir_z);
   }
@@ -193,19 +219,28 @@ void Renderer::trace_camera_rays(const ShotState& shot, int px, int py, int samp
     // counting the exposure without the central part.
     const float part = 1.f / static_cast<float>(samples_);
     const float gap_start = 0.5f - 0.5f * part;
+    const float in_part = pattern_[sample][2];
     for (int k = 0; k < N; ++k) {
-      const float u =
-          (static_cast<float>(sample - 1) +
-           uniform01(random_bits_after(l.shutter_key[k], {static_cast<std::uint64_t>(sample)}))) *
-          part;
+      const float u = (static_cast<float>(sample - 1) + wrap01(l.shift[2][k] + in_part)) * part;
       const float t = ray.time[k] + shot.times.exposure * ((u < gap_start ? u : u + part) - 0.5f);
       ray.time[k] = std::clamp(t, 0.f, 1.f);
     }
   }
+  // Without a rolling shutter, the pixel-centre rays (and every sample without blur) share one
+  // time, which may have a still scene of its own; rays at other times need the motion-blur
+  // scene only near the moving bodies.
+  l.spread = shot.times.per_row != 0 || (sample > 0 && shot.blur);
+  if (l.spread) {
+    const float* const org[3] = {ray.org_x, ray.org_y, ray.org_z};
+    const float* const dir[3] = {ray.dir_x, ray.dir_y, ray.dir_z};
+    l.scene = embree_.scene_for<N>(l.valid, org, dir, ray.tfar);
+  } else {
+    l.scene = embree_.scene_at(ray.time[0]);
+  }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  intersect_packet<N>(l.valid, embree_.handle(), &context, l.packet);
+  intersect_packet<N>(l.valid, l.scene, &context, l.packet);
   for (int k = 0; k < N; ++k) {
     l.hit[k] = l.valid[k] && l.packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID ? -1 : 0;
     const float t = l.hit[k] ? ray.tfar[k] : 0.f;
@@ -322,9 +357,14 @@ int Renderer::add_light(const LightSource& light, Lanes& l) const {
       shadow.id[k] = static_cast<unsigned>(k);
       shadow.flags[k] = 0;
     }
+    RTCScene scene = l.scene;
+    if (l.spread) {
+      const float* const org[3] = {shadow.org_x, shadow.org_y, shadow.org_z};
+      scene = embree_.scene_for<N>(lit, org, dir, shadow.tfar);
+    }
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    occluded_packet<N>(lit, embree_.handle(), &context, shadow);
+    occluded_packet<N>(lit, scene, &context, shadow);
     for (int k = 0; k < N; ++k) {
       if (shadow.tfar[k] < 0.f) weight[k] = 0.f;
     }
@@ -418,8 +458,10 @@ RayCounts Renderer::render_tile(const ShotState& shot, const Tile& tile, Rendere
         for (int k = 0; k < N; ++k) {
           const std::uint64_t pixel =
               static_cast<std::uint64_t>(py + k / B) * rays.width() + px + k % B;
-          l.jitter_key[k] = random_bits_after(shot.jitter, {pixel});
-          if (shot.blur) l.shutter_key[k] = random_bits_after(shot.shutter, {pixel});
+          const std::uint64_t bits = random_bits_after(shot.jitter, {pixel});
+          l.shift[0][k] = uniform01(bits);
+          l.shift[1][k] = uniform01(bits << 24);
+          l.shift[2][k] = shot.blur ? uniform01(random_bits_after(shot.shutter, {pixel})) : 0.f;
         }
       }
       for (int s = 0; s <= last_sample; ++s) {

@@ -4,6 +4,7 @@
 // Parallel over tiles of all cameras; 4x4-pixel Embree ray packets within a tile.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <opencv2/core/mat.hpp>
 #include <vector>
@@ -115,6 +116,7 @@ class Renderer {
   double fps_;
   int first_frame_;
   std::vector<double> exposure_reference_;
+  std::vector<std::array<float, 3>> pattern_;  // per sample: x, y and time offsets in [0, 1)
   SrgbEncoder encode_;
 };
 

@@ -28,10 +28,15 @@ void add_bench_render(CLI::App& bench, Action& action) {
       ->capture_default_str()
       ->check(positive_number());
   cmd->add_option("--set", options.overrides, "Scene override key.path=value, repeatable");
+  cmd->add_option("--blur", options.blur_samples,
+                  "Also the CPU cost of motion blur with this many samples per pixel "
+                  "(render.shutter 1) against one sample, on --ray-frames frames")
+      ->check(CLI::Range(2, 1024));
   cmd->add_flag("-q,--quiet", options.quiet, "No progress on stderr");
   cmd->footer(
-      "Example:\n"
+      "Examples:\n"
       "  simcap bench render scenes/studio4.yaml\n"
+      "  simcap bench render --frames 20 --ray-frames 10 --blur 8\n"
       "The last line is: frames_per_s=<x> mrays_per_s=<y> embree_mrays_per_s=<z> "
       "embree_ratio=<y/z>");
   cmd->callback([&action] {

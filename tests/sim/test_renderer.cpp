@@ -204,9 +204,8 @@ TEST(CameraRays, BlockOfJitteredRaysIsBitIdenticalToSingleRays) {
       }
       rays.jittered_block(px, py, jx, jy, valid, dx, dy, dz);
       for (int k = 0; k < N; ++k) {
-        const Eigen::Vector3f d =
-            valid[k] ? rays.jittered_direction(px + k % B, py + k / B, jx[k], jy[k])
-                     : Eigen::Vector3f(Eigen::Vector3f::UnitZ());
+        const Eigen::Vector3f d = valid[k] ? rays.jittered_ray(px + k % B, py + k / B, jx[k], jy[k])
+                                           : Eigen::Vector3f(Eigen::Vector3f::UnitZ());
         // Bit for bit: the renderer's images must not depend on which of the two it calls.
         EXPECT_EQ(dx[k], d.x()) << px << "," << py << " lane " << k;
         EXPECT_EQ(dy[k], d.y()) << px << "," << py << " lane " << k;
