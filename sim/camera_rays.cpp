@@ -62,18 +62,29 @@ void CameraRays::jittered_block(int px, int py, const float* jx, const float* jy
   const int w1 = camera_.width + 1;
   alignas(64) float x00[kLanes], y00[kLanes], x01[kLanes], y01[kLanes];
   alignas(64) float x10[kLanes], y10[kLanes], x11[kLanes], y11[kLanes];
-  for (int k = 0; k < kLanes; ++k) {
+  auto gather = [&](int k, const Eigen::Vector2f* c) {
+    x00[k] = c[0].x();
+    y00[k] = c[0].y();
+    x01[k] = c[1].x();
+    y01[k] = c[1].y();
+    x10[k] = c[w1].x();
+    y10[k] = c[w1].y();
+    x11[k] = c[w1 + 1].x();
+    y11[k] = c[w1 + 1].y();
+  };
+  const Eigen::Vector2f* first = corners_.data() + static_cast<size_t>(py) * w1 + px;
+  int whole = -1;
+  for (int k = 0; k < kLanes; ++k) whole &= valid[k];
+  if (whole) {
+    // Row by row: the corners of a row of the block are contiguous.
+    for (int r = 0; r < kBlock; ++r) {
+      for (int x = 0; x < kBlock; ++x) gather(r * kBlock + x, first + r * w1 + x);
+    }
+  } else {
     // Lanes outside the image read pixel (px, py)'s corners and are overwritten below.
-    const size_t c = valid[k] ? static_cast<size_t>(py + k / kBlock) * w1 + px + k % kBlock
-                              : static_cast<size_t>(py) * w1 + px;
-    x00[k] = corners_[c].x();
-    y00[k] = corners_[c].y();
-    x01[k] = corners_[c + 1].x();
-    y01[k] = corners_[c + 1].y();
-    x10[k] = corners_[c + w1].x();
-    y10[k] = corners_[c + w1].y();
-    x11[k] = corners_[c + w1 + 1].x();
-    y11[k] = corners_[c + w1 + 1].y();
+    for (int k = 0; k < kLanes; ++k) {
+      gather(k, first + (valid[k] ? (k / kBlock) * w1 + k % kBlock : 0));
+    }
   }
   // Inputs, matrix and results in locals: stores through the output pointers could alias the
   // others, which kept the loop scalar.
