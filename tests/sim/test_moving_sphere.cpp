@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "core/camera.h"
@@ -68,10 +69,13 @@ struct MovingSphere {
   Camera camera =
       Camera::look_at("cam", 80, 60, 60 * std::numbers::pi / 180, {0, 0, 0}, {0, 0, -1});
   BodyMesh mesh = sphere_mesh();
-  EmbreeScene embree{BodyBvhUpdate::rebuild, 2};
+  // Two time steps, or three with a still copy of the middle one (the renderer's blur setting).
+  const int steps;
+  EmbreeScene embree;
   Eigen::Vector3d start{-0.7, 0.1, -3}, end{0.7, -0.1, -3};
 
-  explicit MovingSphere(int samples) {
+  explicit MovingSphere(int samples, int time_steps = 2)
+      : steps(time_steps), embree(BodyBvhUpdate::rebuild, time_steps, time_steps == 3 ? 1 : -1) {
     scene.lights.clear();
     scene.ambient = 1;
     scene.render.samples_per_pixel = samples;
@@ -79,8 +83,8 @@ struct MovingSphere {
     std::array<Rgb, kMaterialRegionCount> white;
     white.fill(Rgb(1, 1, 1));
     embree.add_actor(body, white);
-    for (int step = 0; step < 2; ++step) {
-      const Eigen::Vector3f c = (step == 0 ? start : end).cast<float>();
+    for (int step = 0; step < steps; ++step) {
+      const Eigen::Vector3f c = centre(static_cast<double>(step) / (steps - 1)).cast<float>();
       float* v = embree.body_vertices(body, step);
       for (size_t i = 0; i < mesh.vertices.size(); ++i) {
         for (int k = 0; k < 3; ++k) v[3 * i + k] = mesh.vertices[i][k] + c[k];
@@ -148,9 +152,14 @@ double time_covered(const MovingSphere& s, double x, double y) {
   return std::max(0.0, std::min(1.0, t1) - std::max(0.0, t0));
 }
 
-TEST(MovingSphere, MotionBlurCoversEachPixelAsTheSphereDidOverTheExposure) {
+class MovingSphereBlur : public testing::TestWithParam<int> {};
+
+// With three steps the pixel-centre rays trace the still copy of the middle step, and the other
+// samples the still scene too wherever they pass the sphere's path at a distance: a ray sent
+// there by mistake would miss the sphere and show in the coverage.
+TEST_P(MovingSphereBlur, CoversEachPixelAsTheSphereDidOverTheExposure) {
   constexpr int kSamples = 256, kSub = 8;
-  const MovingSphere s(kSamples);
+  const MovingSphere s(kSamples, GetParam());
   RayTimes exposure;
   exposure.row0 = 0.5f;
   exposure.exposure = 1.f;
@@ -185,6 +194,35 @@ TEST(MovingSphere, MotionBlurCoversEachPixelAsTheSphereDidOverTheExposure) {
   // 256 samples stratified over the exposure: per-pixel noise of a few percent at most.
   EXPECT_LT(error_sum / blurred, 0.02);
   EXPECT_NEAR(rendered_total, analytic_total, 0.01 * analytic_total);
+}
+
+INSTANTIATE_TEST_SUITE_P(TimeSteps, MovingSphereBlur, testing::Values(2, 3));
+
+TEST(MovingSphere, RaysFarFromTheSpheresPathTraceTheStillScene) {
+  const MovingSphere s(1, 3);
+  const RTCScene moving = s.embree.handle();
+  const RTCScene still = s.embree.scene_at(0.5f);
+  EXPECT_NE(still, moving);
+  EXPECT_EQ(s.embree.scene_at(0.25f), moving);
+  constexpr int N = 4;
+  // From the camera: towards the sphere's start, its end, above the path, beside it.
+  const float target[N][3] = {{-0.7f, 0.1f, -3}, {0.7f, -0.1f, -3}, {0, 0.5f, -3}, {1.3f, 0, -3}};
+  alignas(16) float org[3][N] = {}, dir[3][N], far[N];
+  for (int k = 0; k < N; ++k) {
+    for (int c = 0; c < 3; ++c) dir[c][k] = target[k][c];
+    far[k] = std::numeric_limits<float>::infinity();
+  }
+  const float* const o[3] = {org[0], org[1], org[2]};
+  const float* const d[3] = {dir[0], dir[1], dir[2]};
+  for (int k = 0; k < N; ++k) {
+    alignas(16) int valid[N] = {};
+    valid[k] = -1;
+    EXPECT_EQ(s.embree.scene_for<N>(valid, o, d, far), k < 2 ? moving : still) << k;
+  }
+  // A ray that ends before the path does not need it either.
+  alignas(16) int valid[N] = {-1, 0, 0, 0};
+  const float short_ray[N] = {0.5f, 0, 0, 0};
+  EXPECT_EQ(s.embree.scene_for<N>(valid, o, d, short_ray), still);
 }
 
 }  // namespace
