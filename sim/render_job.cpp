@@ -263,8 +263,8 @@ Json describe_capture(const Scene& scene, const CaptureClock& clock) {
       "with exposure_ms > 0, rgb averages samples_per_pixel samples, one in each of as many "
       "equal parts of each row's exposure (t -+ exposure / 2): the ray through the pixel centre "
       "at the exposure's middle t in the central part, rays jittered over the pixel and within "
-      "their part in the others; depth, mask, parts and normal are that centre ray's, as the 2D "
-      "truth";
+      "their part in the others (the R3 sequence, shifted per pixel); depth, mask, parts and "
+      "normal are that centre ray's, as the 2D truth";
   return c;
 }
 

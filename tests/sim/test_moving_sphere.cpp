@@ -1,5 +1,6 @@
 // The renderer's time against analytic answers: a sphere moving at constant velocity across a
-// camera's view (Embree motion blur, two vertex time steps interpolate the motion exactly). A
+// camera's view (Embree motion blur, two or three vertex time steps interpolate the motion
+// exactly; with three, a still copy of the middle one as the renderer's blur uses). A
 // rolling shutter shows each row the sphere where it was when that row was captured; a motion-
 // blurred render covers each pixel the fraction of the exposure and pixel area the sphere did.
 #include <gtest/gtest.h>
