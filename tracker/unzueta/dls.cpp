@@ -1,12 +1,22 @@
 #include "tracker/unzueta/dls.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace simcap {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+// PIK's lowest priority, a joint-space cost: the standing pose with elbows and knees bent by
+// this much (radians, "slightly bent"), pulled toward by this fraction of the way per iteration.
+constexpr double kRelaxedFlexion = 0.3;
+constexpr double kRelaxedGain = 0.1;
+// PIK's levels: ankles, then wrists, then the head (rows of the 15-row error, 3 per effector in
+// the order head, left wrist, right wrist, left ankle, right ankle).
+constexpr std::array<int, 5> kPikEffectorOrder = {3, 4, 1, 2, 0};
 
 double wrap(double a) {
   return std::remainder(a, 2 * kPi);
@@ -57,6 +67,8 @@ DlsSolver::DlsSolver(SikBody body, DlsOptions options)
   }
   for (int j : hinge_joints_) dofs_.push_back({j, -1});
   angles_ = Eigen::VectorXd::Zero(static_cast<int>(dofs_.size()));
+  relaxed_ = angles_;
+  relaxed_.tail(static_cast<int>(hinge_joints_.size())).setConstant(kRelaxedFlexion);
   effector_joint_ = {body_.head(), body_.arm(kLeft).c, body_.arm(kRight).c, body_.leg(kLeft).c,
                      body_.leg(kRight).c};
   for (const Dof& d : dofs_) {
@@ -88,6 +100,8 @@ void DlsSolver::pose_from_angles() {
 void DlsSolver::place_root(const SikTargets& targets) {
   pose_.root_position = targets.pelvis;
   body_.forward(pose_, rotation_, position_);
+  // PIK's root marker has the highest priority: it stays on its target.
+  if (options_.update == JacobianUpdate::kPrioritized) return;
   const Eigen::Vector3d shift = -0.5 * (position_[body_.head()] - targets.head);
   pose_.root_position += shift;
   for (Eigen::Vector3d& p : position_) p += shift;
@@ -102,6 +116,63 @@ double DlsSolver::largest_error(const SikTargets& targets) const {
     worst = std::max(worst, (position_[effector_joint_[i]] - goal[i]).norm());
   }
   return worst;
+}
+
+bool DlsSolver::clamp_joint(int k, Eigen::VectorXd& angles) const {
+  const int j = dofs_[k].joint;
+  if (dofs_[k].axis < 0) {
+    const double clamped = std::clamp(angles[k], limits_[j].min, limits_[j].max);
+    if (clamped == angles[k]) return false;
+    angles[k] = clamped;
+    return true;
+  }
+  const Eigen::Vector3d e = angles.segment<3>(k);
+  const Eigen::Quaterniond q = from_euler(e);
+  if (limits_.excess(j, q) <= 0.0) return false;
+  angles.segment<3>(k) = to_euler(limits_.clamp(j, q), e);
+  return true;
+}
+
+Eigen::VectorXd DlsSolver::pik_step(const Eigen::MatrixXd& jacobian,
+                                    const Eigen::VectorXd& residual) const {
+  const int n = static_cast<int>(dofs_.size());
+  Eigen::MatrixXd j(15, n);
+  Eigen::VectorXd e(15);
+  for (int level = 0; level < 5; ++level) {
+    j.middleRows<3>(3 * level) = jacobian.middleRows<3>(3 * kPikEffectorOrder[level]);
+    e.segment<3>(3 * level) = residual.segment<3>(3 * kPikEffectorOrder[level]);
+  }
+  const std::vector<int> level_rows = {6, 6, 3};
+  const Eigen::VectorXd relax = kRelaxedGain * (relaxed_ - angles_);
+  std::vector<bool> fixed(n, false);
+  Eigen::VectorXd fixed_step = Eigen::VectorXd::Zero(n);
+  for (;;) {
+    Eigen::MatrixXd free_j = j;
+    Eigen::VectorXd free_relax = relax;
+    for (int k = 0; k < n; ++k) {
+      if (!fixed[k]) continue;
+      free_j.col(k).setZero();
+      free_relax[k] = 0.0;
+    }
+    Eigen::VectorXd step =
+        prioritized_step(free_j, e - j * fixed_step, level_rows, options_.damping, free_relax);
+    for (int k = 0; k < n; ++k) {
+      if (fixed[k]) step[k] = fixed_step[k];
+    }
+    if (!options_.limits) return step;
+    Eigen::VectorXd trial = angles_ + step;
+    bool added = false;
+    for (int k = 0; k < n; k += dofs_[k].axis < 0 ? 1 : 3) {
+      if (fixed[k] || !clamp_joint(k, trial)) continue;
+      const int size = dofs_[k].axis < 0 ? 1 : 3;
+      for (int i = k; i < k + size; ++i) {
+        fixed[i] = true;
+        fixed_step[i] = trial[i] - angles_[i];
+      }
+      added = true;
+    }
+    if (!added) return step;
+  }
 }
 
 const Pose& DlsSolver::solve(const SikTargets& targets) {
@@ -141,19 +212,11 @@ const Pose& DlsSolver::solve(const SikTargets& targets) {
             axis.cross(position_[effector_joint_[i]] - position_[d.joint]);
       }
     }
-    angles_ += jacobian_step(options_.update, jacobian, residual, options_.damping);
+    angles_ += options_.update == JacobianUpdate::kPrioritized
+                   ? pik_step(jacobian, residual)
+                   : jacobian_step(options_.update, jacobian, residual, options_.damping);
     if (options_.limits) {
-      int k = 0;
-      for (int j : ball_joints_) {
-        const Eigen::Vector3d e = angles_.segment<3>(k);
-        const Eigen::Quaterniond q = from_euler(e);
-        if (limits_.excess(j, q) > 0.0) angles_.segment<3>(k) = to_euler(limits_.clamp(j, q), e);
-        k += 3;
-      }
-      for (int j : hinge_joints_) {
-        angles_[k] = std::clamp(angles_[k], limits_[j].min, limits_[j].max);
-        ++k;
-      }
+      for (int k = 0; k < n; k += dofs_[k].axis < 0 ? 1 : 3) clamp_joint(k, angles_);
     }
     pose_from_angles();
     place_root(targets);

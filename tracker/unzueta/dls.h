@@ -1,5 +1,5 @@
-// The Jacobian baselines of Unzueta's Table 10 (§4.7.1): pseudoinverse, DLS, DLS with SVD and SDLS
-// on ball joints as XYZ follower Euler angles and hinges, all end-effectors solved together.
+// The Jacobian baselines of Unzueta's Table 10 (§4.7.1): pseudoinverse, DLS, DLS with SVD, SDLS
+// and PIK on ball joints as XYZ follower Euler angles and hinges.
 #pragma once
 
 #include <Eigen/Core>
@@ -23,7 +23,9 @@ struct DlsOptions : IkBaselineOptions {
   // freeze the body and in millimetres (0.075 m) barely damp it.
   double damping = 0.75;
   // The thesis runs all its Jacobian methods on the same model, limits and stopping rule; only
-  // the update differs.
+  // the update differs. kPrioritized is its PIK (§4.7.1): the root exactly on the pelvis target,
+  // then ankles, wrists and head at decreasing priority by DLS with SVD, limits as inequality
+  // constraints, and the null space drawn to a relaxed standing pose.
   JacobianUpdate update = JacobianUpdate::kDls;
 };
 
@@ -47,6 +49,12 @@ class DlsSolver final : public IkSolver {
   // Places the root on the pelvis target, then moves it by half the head's error (thesis §4.2).
   void place_root(const SikTargets& targets);
   double largest_error(const SikTargets& targets) const;
+  // Whether dofs [k, k + 3) (a ball joint) or dof k (a hinge) leave the limits at `angles`; then
+  // `angles` gets the clamped values.
+  bool clamp_joint(int k, Eigen::VectorXd& angles) const;
+  // PIK's step: the prioritized step; a joint it would take past its limits is fixed on them
+  // (its columns removed, its move taken out of the error) and the step recomputed, until none.
+  Eigen::VectorXd pik_step(const Eigen::MatrixXd& jacobian, const Eigen::VectorXd& residual) const;
 
   DlsOptions options_;
   SikBody body_;
@@ -58,6 +66,7 @@ class DlsSolver final : public IkSolver {
   std::vector<Dof> dofs_;
   std::vector<int> ball_joints_, hinge_joints_;
   Eigen::VectorXd angles_;                   // one per dof
+  Eigen::VectorXd relaxed_;                  // PIK's standing pose: elbows and knees a bit bent
   std::vector<std::vector<int>> effectors_;  // per dof: indices (0..4) of effectors it moves
   std::array<int, 5> effector_joint_{};      // head, wrists, ankles
 };

@@ -108,8 +108,9 @@ std::unique_ptr<IkSolver> make_ik_solver(std::string_view method, const SikBody&
     return std::make_unique<CcdSolver>(body, o,
                                        method == "kma" ? CcdVariant::kma : CcdVariant::ccd);
   }
-  for (JacobianUpdate update : {JacobianUpdate::kPseudoinverse, JacobianUpdate::kDls,
-                                JacobianUpdate::kDlsSvd, JacobianUpdate::kSdls}) {
+  for (JacobianUpdate update :
+       {JacobianUpdate::kPseudoinverse, JacobianUpdate::kDls, JacobianUpdate::kDlsSvd,
+        JacobianUpdate::kSdls, JacobianUpdate::kPrioritized}) {
     if (method != jacobian_update_name(update)) continue;
     DlsOptions o;
     o.pelvis_weights = settings.pelvis_weights;
@@ -119,12 +120,12 @@ std::unique_ptr<IkSolver> make_ik_solver(std::string_view method, const SikBody&
     return std::make_unique<DlsSolver>(body, o);
   }
   throw Error("unknown inverse-kinematics method '" + std::string(method) +
-              "' (expected sik, ccd, pinv, dls, dls-svd, sdls, tgbsik or kma)");
+              "' (expected sik, ccd, pinv, dls, dls-svd, sdls, pik, tgbsik or kma)");
 }
 
 const std::vector<std::string>& ik_solver_names() {
-  static const std::vector<std::string> names = {"sik",     "ccd",  "pinv",   "dls",
-                                                 "dls-svd", "sdls", "tgbsik", "kma"};
+  static const std::vector<std::string> names = {"sik",  "ccd", "pinv",   "dls", "dls-svd",
+                                                 "sdls", "pik", "tgbsik", "kma"};
   return names;
 }
 

@@ -49,7 +49,7 @@ struct IkSolverSettings {
   double dls_damping = 0.75;                  // metres (see DlsOptions::damping)
   SikSwivel sik_swivel = SikSwivel::neutral;  // sik's limb swivel (tgbsik: least_rotation)
 };
-// The solvers simcap implements: sik, ccd, pinv, dls, dls-svd, sdls, tgbsik, kma.
+// The solvers simcap implements: sik, ccd, pinv, dls, dls-svd, sdls, pik, tgbsik, kma.
 const std::vector<std::string>& ik_solver_names();
 // One of ik_solver_names() on `body`; throws Error for another name.
 std::unique_ptr<IkSolver> make_ik_solver(std::string_view method, const SikBody& body,

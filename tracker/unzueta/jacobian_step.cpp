@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/SVD>
+#include <algorithm>
 #include <numbers>
 
 namespace simcap {
@@ -27,6 +28,8 @@ std::string_view jacobian_update_name(JacobianUpdate update) {
       return "dls-svd";
     case JacobianUpdate::kSdls:
       return "sdls";
+    case JacobianUpdate::kPrioritized:
+      return "pik";
   }
   return "dls";
 }
@@ -63,17 +66,37 @@ Eigen::VectorXd jacobian_step(JacobianUpdate update, const Eigen::MatrixXd& j,
     return j.transpose() * normal.ldlt().solve(e);
   }
   if (update == JacobianUpdate::kSdls) return sdls_step(j, e, std::numbers::pi / 4);
+  return damped_pseudoinverse(j, update == JacobianUpdate::kPseudoinverse ? 0.0 : damping) * e;
+}
+
+Eigen::MatrixXd damped_pseudoinverse(const Eigen::MatrixXd& j, double damping, double scale) {
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(j, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd& s = svd.singularValues();
-  Eigen::VectorXd step = Eigen::VectorXd::Zero(j.cols());
+  Eigen::VectorXd gain = Eigen::VectorXd::Zero(s.size());
+  const double zero = kRelativeZero * std::max(s.size() > 0 ? s[0] : 0.0, scale);
   for (int i = 0; i < s.size(); ++i) {
-    if (s[i] <= kRelativeZero * s[0]) break;
-    const double gain = update == JacobianUpdate::kPseudoinverse
-                            ? 1.0 / s[i]
-                            : s[i] / (s[i] * s[i] + damping * damping);
-    step += svd.matrixV().col(i) * (gain * svd.matrixU().col(i).dot(e));
+    if (s[i] <= zero) break;
+    gain[i] = s[i] / (s[i] * s[i] + damping * damping);
   }
-  return step;
+  return svd.matrixV() * gain.asDiagonal() * svd.matrixU().transpose();
+}
+
+Eigen::VectorXd prioritized_step(const Eigen::MatrixXd& j, const Eigen::VectorXd& e,
+                                 const std::vector<int>& level_rows, double damping,
+                                 const Eigen::VectorXd& joint_step) {
+  const Eigen::Index n = j.cols();
+  Eigen::VectorXd step = Eigen::VectorXd::Zero(n);
+  Eigen::MatrixXd null_space = Eigen::MatrixXd::Identity(n, n);
+  Eigen::Index row = 0;
+  for (int rows : level_rows) {
+    const auto jk = j.middleRows(row, rows);
+    const Eigen::MatrixXd projected = jk * null_space;
+    const double scale = jk.norm();
+    step += damped_pseudoinverse(projected, damping, scale) * (e.segment(row, rows) - jk * step);
+    null_space -= damped_pseudoinverse(projected, 0.0, scale) * projected;
+    row += rows;
+  }
+  return step + null_space * joint_step;
 }
 
 }  // namespace simcap

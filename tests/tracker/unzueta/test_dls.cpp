@@ -107,7 +107,8 @@ TEST_P(JacobianSolverTest, NeverLeavesTheLimits) {
 
 INSTANTIATE_TEST_SUITE_P(Updates, JacobianSolverTest,
                          ::testing::Values(JacobianUpdate::kPseudoinverse, JacobianUpdate::kDls,
-                                           JacobianUpdate::kDlsSvd, JacobianUpdate::kSdls),
+                                           JacobianUpdate::kDlsSvd, JacobianUpdate::kSdls,
+                                           JacobianUpdate::kPrioritized),
                          [](const auto& info) {
                            std::string name(jacobian_update_name(info.param));
                            std::erase(name, '-');

@@ -1,11 +1,13 @@
 // The Jacobian updates of Table 10's baselines against independent formulas: the pseudoinverse
 // against Eigen's complete orthogonal decomposition, DLS by SVD against the normal equations, SDLS
-// against the pseudoinverse where its clamps do not act, and SDLS's clamps where they do.
+// against the pseudoinverse where its clamps do not act, SDLS's clamps where they do, and PIK's
+// priorities: a lower level never moves a higher one.
 #include <gtest/gtest.h>
 
 #include <Eigen/QR>
 #include <numbers>
 #include <random>
+#include <vector>
 
 #include "tracker/unzueta/jacobian_step.h"
 
@@ -86,6 +88,59 @@ TEST(JacobianStep, Names) {
   EXPECT_EQ(jacobian_update_name(JacobianUpdate::kDls), "dls");
   EXPECT_EQ(jacobian_update_name(JacobianUpdate::kDlsSvd), "dls-svd");
   EXPECT_EQ(jacobian_update_name(JacobianUpdate::kSdls), "sdls");
+  EXPECT_EQ(jacobian_update_name(JacobianUpdate::kPrioritized), "pik");
+}
+
+Eigen::VectorXd random_joint_step(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal(0.0, 0.1);
+  Eigen::VectorXd z(40);
+  for (int i = 0; i < z.size(); ++i) z[i] = normal(rng);
+  return z;
+}
+
+TEST(JacobianStep, LowerPrioritiesDoNotDisturbHigherOnes) {
+  const Eigen::MatrixXd j = random_jacobian(11);
+  const Eigen::VectorXd e = random_error(12, 0.3);
+  const Eigen::VectorXd z = random_joint_step(13);
+  const std::vector<int> levels = {6, 6, 3};
+  for (double lambda : {0.0, 0.05, 0.75}) {
+    const Eigen::VectorXd full = prioritized_step(j, e, levels, lambda, z);
+    // Each level alone with the ones above: what it adds leaves J_i dq of those unchanged.
+    Eigen::Index rows = 0;
+    for (std::size_t k = 0; k + 1 < levels.size(); ++k) {
+      rows += levels[k];
+      const std::vector<int> above(levels.begin(), levels.begin() + static_cast<long>(k) + 1);
+      const Eigen::VectorXd partial =
+          prioritized_step(j.topRows(rows), e.head(rows), above, lambda, Eigen::VectorXd::Zero(40));
+      EXPECT_LT((j.topRows(rows) * (full - partial)).norm(), 1e-9)
+          << "lambda " << lambda << ", levels 1-" << k + 1;
+    }
+  }
+}
+
+TEST(JacobianStep, PrioritizedOneLevelIsDlsBySvd) {
+  const Eigen::MatrixXd j = random_jacobian(14);
+  const Eigen::VectorXd e = random_error(15, 0.05);
+  const Eigen::VectorXd svd = jacobian_step(JacobianUpdate::kDlsSvd, j, e, 0.75);
+  const Eigen::VectorXd pik = prioritized_step(j, e, {15}, 0.75, Eigen::VectorXd::Zero(40));
+  EXPECT_LT((pik - svd).norm(), 1e-12 * svd.norm());
+}
+
+TEST(JacobianStep, PrioritizedUndampedSolvesTheTopLevelExactly) {
+  // 40 joints, 15 rows: every level is reachable, so undamped each is met in turn.
+  const Eigen::MatrixXd j = random_jacobian(16);
+  const Eigen::VectorXd e = random_error(17, 0.05);
+  const Eigen::VectorXd step = prioritized_step(j, e, {6, 6, 3}, 0.0, random_joint_step(18));
+  EXPECT_LT((j * step - e).norm(), 1e-9);
+  // A conflicting lower level (a copy of a top row asking for something else) gives way.
+  Eigen::MatrixXd conflict(7, 40);
+  conflict << j.topRows(6), j.row(0);
+  Eigen::VectorXd wanted(7);
+  wanted << e.head(6), e[0] + 1.0;
+  const Eigen::VectorXd given =
+      prioritized_step(conflict, wanted, {6, 1}, 0.0, Eigen::VectorXd::Zero(40));
+  EXPECT_LT((j.topRows(6) * given - e.head(6)).norm(), 1e-9);
 }
 
 }  // namespace
