@@ -25,10 +25,11 @@ Eigen::MatrixXd random_jacobian(unsigned seed) {
   return j;
 }
 
-Eigen::VectorXd random_error(unsigned seed, double scale) {
+// 15 rows (an error) by default; 40 for a joint-space step.
+Eigen::VectorXd random_error(unsigned seed, double scale, int size = 15) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> normal(0.0, scale);
-  Eigen::VectorXd e(15);
+  Eigen::VectorXd e(size);
   for (int i = 0; i < e.size(); ++i) e[i] = normal(rng);
   return e;
 }
@@ -91,18 +92,10 @@ TEST(JacobianStep, Names) {
   EXPECT_EQ(jacobian_update_name(JacobianUpdate::kPrioritized), "pik");
 }
 
-Eigen::VectorXd random_joint_step(unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> normal(0.0, 0.1);
-  Eigen::VectorXd z(40);
-  for (int i = 0; i < z.size(); ++i) z[i] = normal(rng);
-  return z;
-}
-
 TEST(JacobianStep, LowerPrioritiesDoNotDisturbHigherOnes) {
   const Eigen::MatrixXd j = random_jacobian(11);
   const Eigen::VectorXd e = random_error(12, 0.3);
-  const Eigen::VectorXd z = random_joint_step(13);
+  const Eigen::VectorXd z = random_error(13, 0.1, 40);
   const std::vector<int> levels = {6, 6, 3};
   for (double lambda : {0.0, 0.05, 0.75}) {
     const Eigen::VectorXd full = prioritized_step(j, e, levels, lambda, z);
@@ -131,7 +124,7 @@ TEST(JacobianStep, PrioritizedUndampedSolvesTheTopLevelExactly) {
   // 40 joints, 15 rows: every level is reachable, so undamped each is met in turn.
   const Eigen::MatrixXd j = random_jacobian(16);
   const Eigen::VectorXd e = random_error(17, 0.05);
-  const Eigen::VectorXd step = prioritized_step(j, e, {6, 6, 3}, 0.0, random_joint_step(18));
+  const Eigen::VectorXd step = prioritized_step(j, e, {6, 6, 3}, 0.0, random_error(18, 0.1, 40));
   EXPECT_LT((j * step - e).norm(), 1e-9);
   // A conflicting lower level (a copy of a top row asking for something else) gives way.
   Eigen::MatrixXd conflict(7, 40);
