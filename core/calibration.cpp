@@ -160,18 +160,22 @@ void check_one_line_values(const fs::path& path, std::string_view text,
   }
 }
 
-// A line that starts with "---" and goes on without a blank is a plain scalar to yaml-cpp but a
-// document start to OpenCV, whose reader then loops forever on some files (a fuzzing finding,
-// tests/fuzz/regressions/calibration_opencv/dashes_glued_to_text).
-void check_document_starts(const fs::path& path, std::string_view text) {
+// A line that starts with "---" or "..." and goes on without a blank is a plain scalar to
+// yaml-cpp but a document start or end to OpenCV, whose reader then loops forever on some files
+// (fuzzing findings, tests/fuzz/regressions/calibration_opencv/dashes_glued_to_text and
+// calibration_easymocap/dots_glued_to_text).
+void check_document_markers(const fs::path& path, std::string_view text) {
   for (std::size_t start = 0, line = 1; start < text.size(); ++line) {
     const std::size_t end = std::min(text.find('\n', start), text.size());
     const std::string_view row = text.substr(start, end - start);
     start = end + 1;
-    if (row.size() > 3 && row.starts_with("---") &&
-        !std::isspace(static_cast<unsigned char>(row[3]))) {
-      throw_input_error(path, static_cast<int>(line), "",
-                        "'---' (a document start) needs a blank after it");
+    for (const std::string_view marker : {"---", "..."}) {
+      if (row.size() > 3 && row.starts_with(marker) &&
+          !std::isspace(static_cast<unsigned char>(row[3]))) {
+        throw_input_error(path, static_cast<int>(line), "",
+                          "'" + std::string(marker) + "' (a document " +
+                              (marker == "---" ? "start" : "end") + ") needs a blank after it");
+      }
     }
   }
 }
@@ -185,7 +189,7 @@ void check_yaml_syntax(const fs::path& path) {
   std::string text = read_text(path);
   // OpenCV's header "%YAML:1.0" is a directive yaml-cpp refuses; blanking it keeps line numbers.
   if (text.starts_with("%YAML:")) text.erase(0, text.find('\n'));
-  check_document_starts(path, text);
+  check_document_markers(path, text);
   std::istringstream in(text);
   try {
     YAML::Parser parser(in);

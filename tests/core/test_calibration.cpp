@@ -169,6 +169,11 @@ TEST(Calibration, MissingAndGarbledFilesAreErrors) {
   const auto dashes = error_of([&] { read_opencv_calibration(dir / "dashes.yaml"); });
   EXPECT_NE(dashes.find("dashes.yaml:2: '---' (a document start) needs a blank"), std::string::npos)
       << dashes;
+  // The same for a document end: OpenCV's reader loops on this one too.
+  write_text_atomic(dir / "dots.yaml", "%YAML:1.0\n---\na: 1\n...-\n");
+  const auto dots = error_of([&] { read_opencv_calibration(dir / "dots.yaml"); });
+  EXPECT_NE(dots.find("dots.yaml:4: '...' (a document end) needs a blank"), std::string::npos)
+      << dots;
 }
 
 TEST(Calibration, EasyMocapMissingFieldNamesTheFile) {
