@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 
+#include "sim/avx2_clones.h"
 #include "sim/embree_packets.h"
 #include "sim/random.h"
 
@@ -190,8 +191,8 @@ struct Renderer::Lanes {
   alignas(64) float shift[3][N];
 };
 
-void Renderer::trace_camera_rays(const ShotState& shot, int px, int py, int sample,
-                                 Lanes& l) const {
+SIMCAP_AVX2_CLONES void Renderer::trace_camera_rays(const ShotState& shot, int px, int py,
+                                                    int sample, Lanes& l) const {
   constexpr int N = Lanes::N, B = CameraRays::kBlock;
   const CameraRays& rays = *shot.rays;
   auto& ray = l.packet.ray;
@@ -252,7 +253,7 @@ void Renderer::trace_camera_rays(const ShotState& shot, int px, int py, int samp
 
 // A gather, lane by lane. Neighbouring rays mostly hit the same flat, untextured triangle of a
 // wall, whose surface point is then the same for all of them: it is looked up once.
-void Renderer::look_up_surfaces(Lanes& l) const {
+SIMCAP_AVX2_CLONES void Renderer::look_up_surfaces(Lanes& l) const {
   constexpr int N = Lanes::N;
   const auto& hit = l.packet.hit;
   auto look_up = [&](int k) {
@@ -309,7 +310,7 @@ void Renderer::look_up_surfaces(Lanes& l) const {
   }
 }
 
-int Renderer::add_light(const LightSource& light, Lanes& l) const {
+SIMCAP_AVX2_CLONES int Renderer::add_light(const LightSource& light, Lanes& l) const {
   constexpr int N = Lanes::N;
   // The shadow packet's direction and length arrays double as the light vectors.
   RayPacket<N> shadow;
@@ -401,9 +402,10 @@ void Renderer::add_sensor_noise(int px, int py, const ShotState& shot, const int
   }
 }
 
-void Renderer::write_colour(int px, int py, const ShotState& shot, const int* valid, float* linear,
-                            bool sensor_noise, cv::Vec3b* const* rgb_rows,
-                            float* const* depth_rows) const {
+SIMCAP_AVX2_CLONES void Renderer::write_colour(int px, int py, const ShotState& shot,
+                                               const int* valid, float* linear, bool sensor_noise,
+                                               cv::Vec3b* const* rgb_rows,
+                                               float* const* depth_rows) const {
   constexpr int N = Lanes::N, B = CameraRays::kBlock;
   static_assert(3 * N == SrgbEncoder::kBatch);
   alignas(64) std::uint8_t codes[3 * N];
@@ -428,8 +430,9 @@ void Renderer::write_colour(int px, int py, const ShotState& shot, const int* va
   }
 }
 
-RayCounts Renderer::render_tile(const ShotState& shot, const Tile& tile, RenderedView& view,
-                                bool sensor_noise, double& luminance) const {
+SIMCAP_AVX2_CLONES RayCounts Renderer::render_tile(const ShotState& shot, const Tile& tile,
+                                                   RenderedView& view, bool sensor_noise,
+                                                   double& luminance) const {
   constexpr int N = Lanes::N, B = CameraRays::kBlock;
   const CameraRays& rays = *shot.rays;
   const bool single_actor = embree_.actor_count() == 1;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/avx2_clones.h"
+
 namespace simcap {
 
 float srgb_to_linear(float c) {
@@ -24,7 +26,7 @@ SrgbEncoder::SrgbEncoder() {
   }
 }
 
-void SrgbEncoder::encode(const float* linear, std::uint8_t* codes) const {
+SIMCAP_AVX2_CLONES void SrgbEncoder::encode(const float* linear, std::uint8_t* codes) const {
   std::uint32_t indices[kBatch];
   for (int i = 0; i < kBatch; ++i) indices[i] = index(linear[i]);
   for (int i = 0; i < kBatch; ++i) codes[i] = table_[indices[i]];
