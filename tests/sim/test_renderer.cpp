@@ -233,6 +233,46 @@ TEST(Srgb, EncoderInvertsTheTransferCurveForEveryCode) {
   EXPECT_EQ(encode(7.f), 255);
 }
 
+// Every pixel's linear colour is exactly ambient x albedo + (intensity x cosine) x albedo with
+// each operation rounded on its own, as the baseline code computes it; the shading loops run as
+// AVX2 clones where the CPU has them (sim/avx2_clones.h) and must give the same bits. Auto
+// exposure keeps the linear colour per pixel.
+TEST(Renderer, LinearColourRoundsEachOperationOnItsOwn) {
+  Scene scene;
+  scene.ambient = 0.3;
+  scene.timing.auto_exposure = true;
+  Light light;
+  light.direction = {-0.3, -1.0, -0.4};
+  light.intensity = 0.8;
+  scene.lights = {light};
+  EmbreeScene embree;
+  StaticLook look;
+  look.color = {0.53f, 0.65f, 0.41f};  // red and green: a fused multiply-add rounds differently
+  embree.add_static(quad({0, 0, 0}, {5, 0, 0}, {0, 0, 5}), look, false);
+  embree.commit();
+  const Camera cam = Camera::look_at("cam", 64, 48, 1.0, {0.01, 0.5, 0}, {0.01, -1, 0.0},
+                                     Eigen::Vector3d::UnitZ());
+  const RenderedView view = render_one(embree, scene, cam);
+  const Eigen::Vector3f albedo = srgb_to_linear(look.color);
+  const float ambient = static_cast<float>(scene.ambient);
+  const float intensity = static_cast<float>(light.intensity);
+  // The floor's normal is +Y, so the cosine is the light direction's y.
+  const float cosine = (-light.direction).normalized().cast<float>().y();
+  volatile float weight = intensity * cosine;  // volatile: no contraction here either
+  cv::Vec3f expected;
+  for (int c = 0; c < 3; ++c) {
+    volatile const float lit = weight * albedo[c];
+    expected[c] = ambient * albedo[c] + lit;
+  }
+  int mismatches = 0;
+  for (int y = 0; y < view.linear.rows; ++y) {
+    for (int x = 0; x < view.linear.cols; ++x) {
+      mismatches += view.linear.at<cv::Vec3f>(y, x) != expected ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(mismatches, 0) << view.linear.at<cv::Vec3f>(24, 32) << " vs " << expected;
+}
+
 TEST(Texture, SamplesTexelCentresAndRepeatsEveryMetre) {
   testing::TempDir dir;
   cv::Mat image(2, 2, CV_8UC3);
