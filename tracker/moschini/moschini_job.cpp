@@ -67,14 +67,18 @@ double ankle_of(const StickModel& model, const StickPose& pose) {
   return std::min(g.distal[kLCalf].y(), g.distal[kRCalf].y());
 }
 
-// `dims` with the thighs and calves lengthened in proportion by `by` metres in all (shortened
-// when negative), by at most a tenth. At the refit --init auto makes the legs those that put
-// the lowest ankle of the frames so far where it stands on the floor: the silhouettes'
-// proportions search leaves them 2-4% short, the feet afloat (MOSCHINI.md).
-BodyDimensions legs_longer(BodyDimensions dims, double by) {
-  const double legs = dims.thigh + dims.calf;
-  const double factor = 1 + std::clamp(by, -0.1 * legs, 0.1 * legs) / legs;
-  dims.thigh *= factor, dims.calf *= factor;
+// `dims` scaled about the torso's centroid so that a foot under it sinks by `by` metres (rises
+// when negative), by at most a tenth of the reach. At the refit --init auto makes the body the
+// one that puts the lowest ankle of the frames so far where it stands on the floor: the
+// silhouettes' proportions search leaves the stature 2-4% short, the feet afloat (MOSCHINI.md).
+BodyDimensions larger(BodyDimensions dims, double by) {
+  const double reach = dims.torso_half + dims.thigh + dims.calf;
+  const double factor = 1 + std::clamp(by, -0.1 * reach, 0.1 * reach) / reach;
+  for (double* length :
+       {&dims.torso_half, &dims.spine_pivot, &dims.shoulder_half, &dims.shoulder_forward,
+        &dims.hip_forward, &dims.head, &dims.upper_arm, &dims.forearm, &dims.hand, &dims.thigh,
+        &dims.calf, &dims.foot, &dims.root_above_hips, &dims.root_forward})
+    *length *= factor;
   return dims;
 }
 
@@ -264,7 +268,7 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
                      // The pose tracked from a right start is near enough the truth for the
                      // capsules and the offsets that --init gt measures on its first frame.
                      const BodyDimensions dims =
-                         legs_longer(tracker->model().dimensions(), lowest_ankle - ankle_height);
+                         larger(tracker->model().dimensions(), lowest_ankle - ankle_height);
                      const FittedBody body = fit_body(dims, topt, step.pose, *obs);
                      topt.trust_silhouettes = true;
                      tracker.emplace(body.dims, body.surface, topt);
