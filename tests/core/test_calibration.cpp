@@ -174,6 +174,11 @@ TEST(Calibration, MissingAndGarbledFilesAreErrors) {
   const auto dots = error_of([&] { read_opencv_calibration(dir / "dots.yaml"); });
   EXPECT_NE(dots.find("dots.yaml:4: '...' (a document end) needs a blank"), std::string::npos)
       << dots;
+  // A NUL in the header line: OpenCV's reader loops on the rest of this file.
+  const char nul_text[] = "%YAML:1.\0\n:\n   -x\nc\n";
+  write_text_atomic(dir / "nul.yaml", std::string(nul_text, sizeof nul_text - 1));
+  const auto nul = error_of([&] { read_opencv_calibration(dir / "nul.yaml"); });
+  EXPECT_NE(nul.find("nul.yaml:1: a control character (byte 0x00)"), std::string::npos) << nul;
 }
 
 TEST(Calibration, EasyMocapMissingFieldNamesTheFile) {
