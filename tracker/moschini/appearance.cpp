@@ -144,12 +144,18 @@ AppearanceModel::AppearanceModel(const StickModel& model, const BodySurface& sur
         Eigen::Vector3d((code >> 10) * 8 + 4, ((code >> 5) & 31) * 8 + 4, (code & 31) * 8 + 4),
         options.min_brightness);
     std::uint16_t parts = 0;
+    bool worn = false;
     for (size_t m = 0; c && m < dress.size(); ++m) {
-      if (dress[m].distance2(*c) <= options.max_distance2) parts |= wearers[m];
+      if (dress[m].distance2(*c) > options.max_distance2) continue;
+      parts |= wearers[m];
+      worn = true;
     }
     table_[code] = parts ? parts | unknown : kAllParts;
-    if (c && !dress.empty() && !parts) foreign_[code] = 1;
-    if (parts) distinct_[code] = 1;
+    // A material of the person's own rays is the person's even when the parts wearing it were
+    // seen by too few rays to tell (the skin of the hands and the face on a first frame where
+    // some views are left out because someone else touches the person there).
+    if (c && !dress.empty() && !worn) foreign_[code] = 1;
+    if (worn) distinct_[code] = 1;
   }
 }
 

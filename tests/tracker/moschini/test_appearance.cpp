@@ -86,6 +86,28 @@ TEST(AppearanceModel, RulesNothingOutWithoutEvidence) {
   EXPECT_EQ(dressed.parts({20, 20, 25}), kAllParts) << "too dark to have a chromaticity";
 }
 
+// Learned on a frame where the bare parts were seen by a few rays only (views where someone
+// else touches the person are left out): the skin is still the person's, not someone else's.
+TEST(AppearanceModel, AMaterialOfTheOwnRaysIsNeverForeign) {
+  std::vector<int> shown;
+  const std::vector<SilhouetteRay> all = dressed_rays(testing::walking_pose(), &shown);
+  std::vector<SilhouetteRay> few;
+  std::array<int, kSegmentCount> taken{};
+  for (size_t i = 0; i < all.size(); ++i) {
+    if (kDressed[shown[i]] != kSkin || ++taken[shown[i]] <= 8) few.push_back(all[i]);
+  }
+  AppearanceModel appearance(body(), testing::capsule_surface(), testing::walking_pose(), few);
+  EXPECT_EQ(appearance.learned_parts(), 6) << "head, forearms and hands too few rays to learn";
+  EXPECT_EQ(appearance.parts(kSkin), kAllParts) << "no learned part wears the skin";
+  constexpr std::array<std::uint8_t, 3> kTheirShirt = {30, 40, 200};
+  appearance.learn_others(std::vector<std::array<std::uint8_t, 3>>(100, kTheirShirt));
+  EXPECT_FALSE(appearance.foreign(kSkin));
+  EXPECT_TRUE(appearance.distinct(kSkin));
+  EXPECT_FALSE(appearance.foreign(kShirt));
+  EXPECT_TRUE(appearance.foreign(kTheirShirt));
+  EXPECT_FALSE(appearance.distinct(kTheirShirt));
+}
+
 TEST(PoseRefiner, ColouredRaysPlaceAForearmInFrontOfTheTorso) {
   const StickModel& model = body();
   const StickPose truth = arm_across();
