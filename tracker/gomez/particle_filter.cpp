@@ -10,6 +10,7 @@
 
 #include "models/pose.h"
 #include "tracker/gomez/nelder_mead.h"
+#include "tracker/gomez/root_depth.h"
 
 namespace simcap::tracker::gomez {
 namespace {
@@ -217,11 +218,15 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
     }
   }
   // The children move on at the root's last velocity; the elite and the simplices' first vertex
-  // stay where their parent was, so that a stop (or a still image) is not overshot.
+  // stay where their parent was, so that a stop (or a still image) is not overshot. A root that
+  // jumped (a depth proposal or a reflection won) does not carry the jump on as a speed: the
+  // velocity is held to three typical steps a frame (2.7 m/s at 30 frames/s).
   State velocity = State::Zero(D);
   if (options_.root_velocity && previous_best_.size() == D) {
     for (int i = 0; i < D; ++i) {
-      if (dofs[i].translation) velocity[i] = best_[i] - previous_best_[i];
+      if (dofs[i].translation) {
+        velocity[i] = std::clamp(best_[i] - previous_best_[i], -3 * dofs[i].step, 3 * dofs[i].step);
+      }
     }
   }
   previous_best_ = best_;
@@ -345,12 +350,14 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
   }
 
   // Kinematic flipping (H4) and the front/back reflection of the best particle of the largest
-  // groups, and the hand proposals (H5 from the image) of the best particle of all.
+  // groups, the hand proposals (H5 from the image) of the best particle of all, and the root
+  // depths of the largest groups' best particles.
   const bool flip = options_.h4_flipping && arms_ && options_.flip_groups > 0;
   const bool mirror = mirror_.available() && mirror_tells_ && options_.mirror_groups > 0;
   const bool reach = options_.h5_end_effector && arms_ && hand_class_ != 0 &&
                      options_.hand_depths > 0 && !pool.empty();
-  if (flip || mirror || reach) {
+  const bool depth = options_.depth_groups > 0;
+  if (flip || mirror || reach || depth) {
     std::vector<int> by_size(groups.size());
     std::iota(by_size.begin(), by_size.end(), 0);
     std::stable_sort(by_size.begin(), by_size.end(),
@@ -378,7 +385,13 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
         ++out.hand_proposals;
       }
     }
-    out.flips = static_cast<int>(tested.size()) - out.hand_proposals;
+    for (int k = 0; depth && k < std::min(options_.depth_groups, G); ++k) {
+      if (auto y = root_depth_proposal(dofs, scorer_->shape(), group_best(k), current)) {
+        tested.push_back(std::move(*y));
+        ++out.depth_proposals;
+      }
+    }
+    out.flips = static_cast<int>(tested.size()) - out.hand_proposals - out.depth_proposals;
     const size_t join_freely = tested.size();
     for (int k = 0; mirror && k < std::min(options_.mirror_groups, G); ++k) {
       tested.push_back(mirror_.reflect(group_best(k), centre));
