@@ -385,28 +385,30 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
         ++out.hand_proposals;
       }
     }
+    out.flips = static_cast<int>(tested.size()) - out.hand_proposals;
+    const size_t join_freely = tested.size();
+    for (int k = 0; mirror && k < std::min(options_.mirror_groups, G); ++k) {
+      tested.push_back(mirror_.reflect(group_best(k), centre));
+    }
+    const size_t reflections = tested.size();
     for (int k = 0; depth && k < std::min(options_.depth_groups, G); ++k) {
       if (auto y = root_depth_proposal(dofs, scorer_->shape(), group_best(k), current)) {
         tested.push_back(std::move(*y));
         ++out.depth_proposals;
       }
     }
-    out.flips = static_cast<int>(tested.size()) - out.hand_proposals - out.depth_proposals;
-    const size_t join_freely = tested.size();
-    for (int k = 0; mirror && k < std::min(options_.mirror_groups, G); ++k) {
-      tested.push_back(mirror_.reflect(group_best(k), centre));
-    }
     std::vector<Energy> te(tested.size());
     tbb::parallel_for(size_t{0}, tested.size(), [&](size_t i) { te[i] = energy_of(tested[i]); });
     out.evaluations += static_cast<int>(tested.size());
-    // A reflection joins only when it beats every particle: one close behind would draw children
-    // away from the mode the filter follows into a second one the costs cannot tell apart.
+    // A reflection or a slid root joins only when it beats every particle: one close behind would
+    // draw children away from the mode the filter follows into a second one the costs cannot
+    // tell apart (a crouched body slid in depth against the same body standing).
     double lowest_pool = INFINITY;
     for (const Energy& e : pool_e) lowest_pool = std::min(lowest_pool, e.total());
     for (size_t i = 0; i < tested.size(); ++i) {
       if (i >= join_freely) {
         if (!(te[i].total() < lowest_pool)) continue;
-        ++out.reflected;
+        if (i < reflections) ++out.reflected;
       }
       pool.push_back(std::move(tested[i]));
       pool_e.push_back(te[i]);

@@ -58,8 +58,9 @@ struct FilterOptions {
   // The root's depth from the silhouette's feet and top rows (simcap's addition for the full
   // body on the floor): how many groups, largest first, have their best particle slid along the
   // ground under its camera ray to where its image extent meets those rows
-  // (root_depth_proposal); the slid poses join the pool as H4's flips do. A step towards the
-  // camera changes the costs too little for the diffusion to follow it; 0 is off.
+  // (root_depth_proposal); a slid pose joins the pool only when it beats every particle (as a
+  // reflection does). A step towards the camera changes the costs too little for the diffusion
+  // to follow it; 0 is off.
   int depth_groups = 1;
   std::uint64_t seed = 1;
 };
