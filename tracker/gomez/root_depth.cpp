@@ -59,27 +59,18 @@ std::optional<State> root_depth_proposal(const BodyDofs& dofs, const BodyShape& 
   const auto cost = [&](double s) { return offsets(s).squaredNorm(); };
   if (offsets(0).cwiseAbs().maxCoeff() <= options.least_px) return std::nullopt;
 
-  // A coarse scan (the cost need not be convex: a slide towards the camera may cut the feet off
-  // the extent's reach), then a golden-section search about the best point of the scan.
-  const double step = 0.05;
-  double best = 0, best_cost = cost(0);
-  for (double s = -options.reach_m; s <= options.reach_m + 1e-9; s += step) {
-    const double c = cost(s);
-    if (c < best_cost) best = s, best_cost = c;
-  }
-  const double phi = 0.5 * (std::sqrt(5.0) - 1);
-  double a = best - step, b = best + step;
-  double c = b - phi * (b - a), d = a + phi * (b - a), fc = cost(c), fd = cost(d);
-  for (int k = 0; k < 24; ++k) {
-    if (fc < fd) {
-      b = d, d = c, fd = fc;
-      c = b - phi * (b - a), fc = cost(c);
-    } else {
-      a = c, c = d, fc = fd;
-      d = a + phi * (b - a), fd = cost(d);
+  // A scan every 5 cm (the cost need not be convex: a slide towards the camera may cut the feet
+  // off the extent's reach), then one every 2.5 mm about its best point.
+  const auto scan = [&](double from, double to, double step) {
+    double best = 0, best_cost = cost(0);
+    for (double s = from; s <= to + 1e-9; s += step) {
+      const double c = cost(s);
+      if (c < best_cost) best = s, best_cost = c;
     }
-  }
-  const double s = 0.5 * (a + b);
+    return best;
+  };
+  const double coarse = scan(-options.reach_m, options.reach_m, 0.05);
+  const double s = scan(coarse - 0.05, coarse + 0.05, 0.0025);
   if (offsets(s).cwiseAbs().maxCoeff() > options.tolerance_px) {
     return std::nullopt;
   }
