@@ -1,6 +1,5 @@
-// The root's distance from the camera that the silhouette's feet and top rows ask for: a full
-// body standing on the floor, slid along the ground under its camera ray until its image extent
-// meets them (the particle filter's depth proposals; the costs barely see a step in depth).
+// The root's distance from the camera that the silhouette's feet and top rows ask for, for the
+// particle filter's depth proposals (the region and edge costs barely see a step in depth).
 #pragma once
 
 #include <optional>
