@@ -12,7 +12,7 @@ namespace simcap::cli {
 namespace {
 
 // Sweep keys and the options they set (sweep files name the voxel and noise with their unit).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 32> kSweepKeys{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 33> kSweepKeys{{
     {"method", "--method"},
     {"actor", "--actor"},
     {"silhouettes", "--silhouettes"},
@@ -39,6 +39,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 32> kSweepKe
     {"top_sigma", "--top-sigma"},
     {"mirror_groups", "--mirror-groups"},
     {"hand_depths", "--hand-depths"},
+    {"depth_groups", "--depth-groups"},
     {"floor", "--floor"},
     {"smooth", "--smooth"},
     {"cutoff_hz", "--cutoff"},
@@ -260,6 +261,12 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
                   "a hand-coloured image region no hand of the best pose explains (H5 from the "
                   "image), 0: off")
       ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  cmd->add_option("--depth-groups", m.filter.depth_groups,
+                  "monocular: how many particle groups, largest first, have their best pose "
+                  "tested slid in depth to meet the silhouette's feet and top rows (full body), "
+                  "0: off")
+      ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   TriangulateOptions& t = o.triangulate;
   cmd->add_option("--detections", t.detections,

@@ -10,6 +10,7 @@
 
 #include "models/pose.h"
 #include "tracker/gomez/nelder_mead.h"
+#include "tracker/gomez/root_depth.h"
 
 namespace simcap::tracker::gomez {
 namespace {
@@ -217,11 +218,15 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
     }
   }
   // The children move on at the root's last velocity; the elite and the simplices' first vertex
-  // stay where their parent was, so that a stop (or a still image) is not overshot.
+  // stay where their parent was, so that a stop (or a still image) is not overshot. A root that
+  // jumped (a depth proposal or a reflection won) does not carry the jump on as a speed: the
+  // velocity is held to three typical steps a frame (2.7 m/s at 30 frames/s).
   State velocity = State::Zero(D);
   if (options_.root_velocity && previous_best_.size() == D) {
     for (int i = 0; i < D; ++i) {
-      if (dofs[i].translation) velocity[i] = best_[i] - previous_best_[i];
+      if (dofs[i].translation) {
+        velocity[i] = std::clamp(best_[i] - previous_best_[i], -3 * dofs[i].step, 3 * dofs[i].step);
+      }
     }
   }
   previous_best_ = best_;
@@ -345,12 +350,14 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
   }
 
   // Kinematic flipping (H4) and the front/back reflection of the best particle of the largest
-  // groups, and the hand proposals (H5 from the image) of the best particle of all.
+  // groups, the hand proposals (H5 from the image) of the best particle of all, and the root
+  // depths of the largest groups' best particles.
   const bool flip = options_.h4_flipping && arms_ && options_.flip_groups > 0;
   const bool mirror = mirror_.available() && mirror_tells_ && options_.mirror_groups > 0;
   const bool reach = options_.h5_end_effector && arms_ && hand_class_ != 0 &&
                      options_.hand_depths > 0 && !pool.empty();
-  if (flip || mirror || reach) {
+  const bool depth = options_.depth_groups > 0;
+  if (flip || mirror || reach || depth) {
     std::vector<int> by_size(groups.size());
     std::iota(by_size.begin(), by_size.end(), 0);
     std::stable_sort(by_size.begin(), by_size.end(),
@@ -383,17 +390,25 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
     for (int k = 0; mirror && k < std::min(options_.mirror_groups, G); ++k) {
       tested.push_back(mirror_.reflect(group_best(k), centre));
     }
+    const size_t reflections = tested.size();
+    for (int k = 0; depth && k < std::min(options_.depth_groups, G); ++k) {
+      if (auto y = root_depth_proposal(dofs, scorer_->shape(), group_best(k), current)) {
+        tested.push_back(std::move(*y));
+        ++out.depth_proposals;
+      }
+    }
     std::vector<Energy> te(tested.size());
     tbb::parallel_for(size_t{0}, tested.size(), [&](size_t i) { te[i] = energy_of(tested[i]); });
     out.evaluations += static_cast<int>(tested.size());
-    // A reflection joins only when it beats every particle: one close behind would draw children
-    // away from the mode the filter follows into a second one the costs cannot tell apart.
+    // A reflection or a slid root joins only when it beats every particle: one close behind would
+    // draw children away from the mode the filter follows into a second one the costs cannot
+    // tell apart (a crouched body slid in depth against the same body standing).
     double lowest_pool = INFINITY;
     for (const Energy& e : pool_e) lowest_pool = std::min(lowest_pool, e.total());
     for (size_t i = 0; i < tested.size(); ++i) {
       if (i >= join_freely) {
         if (!(te[i].total() < lowest_pool)) continue;
-        ++out.reflected;
+        if (i < reflections) ++out.reflected;
       }
       pool.push_back(std::move(tested[i]));
       pool_e.push_back(te[i]);

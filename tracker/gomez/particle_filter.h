@@ -5,7 +5,8 @@
 // Nelder-Mead simplex, H4 kinematic flipping of the arms about the camera rays, H5 arms diffused
 // as wrist positions in camera coordinates plus the elbow's swivel angle; and simcap's additions:
 // arms proposed reaching the hands' image regions (H5 from the image), and for a walking body its
-// reflection across the camera ray (front/back), tested as H4 tests flips.
+// reflection across the camera ray (front/back), tested as H4 tests flips, and its root slid
+// in depth to meet the silhouette's feet and top rows.
 #pragma once
 
 #include <Eigen/Core>
@@ -54,6 +55,13 @@ struct FilterOptions {
   // its hand, not from diffusion about the last pose. Off on a body whose hands have the trunk's
   // class (no region of their own); 0 is off.
   int hand_depths = 2;
+  // The root's depth from the silhouette's feet and top rows (simcap's addition for the full
+  // body on the floor): how many groups, largest first, have their best particle slid along the
+  // ground under its camera ray to where its image extent meets those rows
+  // (root_depth_proposal); a slid pose joins the pool only when it beats every particle (as a
+  // reflection does). A step towards the camera changes the costs too little for the diffusion
+  // to follow it; 0 is off.
+  int depth_groups = 1;
   std::uint64_t seed = 1;
 };
 
@@ -68,6 +76,7 @@ struct FilterStep {
   int flips = 0;                         // kinematic flips tested (H4)
   int reflected = 0;                     // front/back reflections that joined (beat every particle)
   int hand_proposals = 0;                // image-driven hand proposals tested (H5)
+  int depth_proposals = 0;               // root depths from the feet and top rows tested
   std::array<bool, kPartCount> moved{};  // H2's motion detection
 };
 

@@ -8,6 +8,7 @@
 
 #include "models/humanoid.h"
 #include "tracker/gomez/monocular_tracker.h"
+#include "tracker/gomez/root_depth.h"
 
 namespace simcap::tracker::gomez {
 namespace {
@@ -192,6 +193,47 @@ TEST(Recovery, TheFeetPriorPlacesTheBodyOnTheFloorAtItsDepth) {
   EXPECT_LT(moved.feet, -2.0);
   EXPECT_GT(moved.top, 1.0);
   EXPECT_GT(energy(moved, o).feet, energy(at, o).feet + 0.5);
+}
+
+// The depth proposal: the body slid 0.6 m along the floor under its camera ray (its image column
+// kept, its size and feet row changed) comes back to the drawn depth from the silhouette's feet
+// and top rows, and from the top row alone when the feet are cut off; at the drawn depth there
+// is nothing to propose.
+TEST(RootDepth, SlidesTheBodyBackToTheSilhouettesFeetAndTopRows) {
+  const struct Setup s;
+  const BodyDofs& dofs = s.body->dofs;
+  const Rendered r = draw(*s.body, s.truth, s.camera);
+  const ColourClasses classes =
+      learn_colours(*s.body, s.truth, s.camera, r.image, r.silhouette, {});
+  FrameCues cues = make_cues(s.camera, r.image, r.silhouette, classes, {}, {});
+  ASSERT_TRUE(std::isfinite(cues.feet_row) && std::isfinite(cues.top_row));
+  EXPECT_FALSE(root_depth_proposal(dofs, s.body->shape, s.truth, cues));
+  const int tx = dofs.require("root_tx"), tz = dofs.require("root_tz");
+  const Eigen::Vector2d truth(s.truth[tx], s.truth[tz]);
+  Eigen::Vector3d along = dofs.pose(s.truth).root_position - s.camera.centre();
+  along.y() = 0;
+  along.normalize();
+  for (const double slide : {0.6, -0.6}) {
+    State x = s.truth;
+    x[tx] += slide * along.x();
+    x[tz] += slide * along.z();
+    for (const bool feet : {true, false}) {
+      FrameCues c = cues;
+      if (!feet) c.feet_row = NAN;
+      // The head's row alone moves little with depth here (the camera is near its height).
+      RootDepthOptions o;
+      o.least_px = 1.0;
+      const auto y = root_depth_proposal(dofs, s.body->shape, x, c, o);
+      ASSERT_TRUE(y) << slide << " " << feet;
+      EXPECT_LT((Eigen::Vector2d((*y)[tx], (*y)[tz]) - truth).norm(), feet ? 0.02 : 0.05)
+          << slide << " " << feet;
+    }
+  }
+  FrameCues none = cues;
+  none.feet_row = none.top_row = NAN;
+  State x = s.truth;
+  x[tz] += 0.5;
+  EXPECT_FALSE(root_depth_proposal(dofs, s.body->shape, x, none));
 }
 
 }  // namespace
