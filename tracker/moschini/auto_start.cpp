@@ -7,30 +7,12 @@
 
 #include "core/error.h"
 #include "tracker/moschini/body_surface.h"
+#include "tracker/moschini/grid_search.h"
 #include "tracker/moschini/pose_init.h"
 #include "tracker/moschini/surface_fit.h"
 
 namespace simcap::tracker {
 namespace {
-
-// The argument in [lo, hi] at which f is least, for f unimodal there (golden-section search
-// with `evaluations` calls of f).
-template <typename F>
-double least(F&& f, double lo, double hi, int evaluations) {
-  const double g = (std::sqrt(5.0) - 1) / 2;
-  double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
-  double fa = f(a), fb = f(b);
-  for (int i = 2; i < evaluations; ++i) {
-    if (fa < fb) {
-      hi = b, b = a, fb = fa;
-      a = hi - g * (hi - lo), fa = f(a);
-    } else {
-      lo = a, a = b, fa = fb;
-      b = lo + g * (hi - lo), fb = f(b);
-    }
-  }
-  return fa < fb ? a : b;
-}
 
 // Of `upright` turned about the vertical through its torso's centroid by every 360/turns
 // degrees, each fitted again, as a recovery hypothesis and to the silhouettes alone, and
@@ -121,10 +103,11 @@ AutoStart auto_start(const std::vector<Observation>& first, const TrackerOptions
     }
     return total;
   };
-  const double shoulders = least([&](double v) { return cost(dims_of(1.0, v)); },
-                                 search.shoulders_lo, search.shoulders_hi, search.evaluations);
-  const double scale = least([&](double s) { return cost(dims_of(s, shoulders)); }, search.scale_lo,
-                             search.scale_hi, search.evaluations);
+  const double shoulders =
+      least_on_grid([&](double v) { return cost(dims_of(1.0, v)); }, search.shoulders_lo,
+                    search.shoulders_hi, search.evaluations);
+  const double scale = least_on_grid([&](double s) { return cost(dims_of(s, shoulders)); },
+                                     search.scale_lo, search.scale_hi, search.evaluations);
   dims = dims_of(scale, shoulders);
   MoschiniTracker tracker(dims, typical_surface(dims), fine);
   tracker.start(upright);

@@ -25,7 +25,7 @@ struct AutoStartOptions {
   // CMU 131_01's raised clavicles).
   double scale_lo = 0.95, scale_hi = 1.08;
   double shoulders_lo = 0.75, shoulders_hi = 1.35;
-  int evaluations = 8;  // per golden-section search
+  int evaluations = 13;  // per search, evenly spaced over its range
   // The heading: a rig symmetric under a quarter turn (four corner cameras) sees a person
   // standing still at its centre facing one wall much as one facing the next, so the best
   // upright fit is also tried turned by every 360/turns degrees, and the start whose track

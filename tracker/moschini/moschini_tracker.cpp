@@ -27,6 +27,7 @@ MoschiniTracker::MoschiniTracker(const BodyDimensions& dims, const BodySurface& 
       refiner_(model_, surface, options.icp.refine),
       polisher_(model_, surface, options.polish),
       silhouette_starter_(model_, surface, options.silhouette_start),
+      arm_searcher_(model_, surface, options.unexplained.restart),
       filter_(model_, options.filter) {}
 
 IcpTargets MoschiniTracker::targets_of(const Observation& obs) {
@@ -44,6 +45,8 @@ void MoschiniTracker::start(const StickPose& pose) {
   started_ = true;
   lost_streak_ = 0;
   patience_ = options_.recovery.lost_frames;
+  unexplained_wait_ = 0;
+  unexplained_backoff_ = 1;
 }
 
 double MoschiniTracker::outside_fraction(const StickPose& pose, const Occupancy& hull) const {
@@ -109,7 +112,8 @@ StickPose MoschiniTracker::best_upright(const Observation& obs, const StickPose*
 }
 
 double MoschiniTracker::search_limbs(const IcpTargets& targets, StickPose& pose,
-                                     std::optional<double> cost, const PoseRefiner* by) const {
+                                     std::optional<double> cost, const PoseRefiner* by,
+                                     unsigned which) const {
   const PoseRefiner& refiner = by ? *by : refiner_;
   struct Limb {
     std::array<int, 4> angles;  // -1: unused
@@ -132,7 +136,9 @@ double MoschiniTracker::search_limbs(const IcpTargets& targets, StickPose& pose,
       {{0.0, 0.0, 0.0, 0.0}, {0.0, -0.4, 0.3, 0.0}, {0.0, 0.3, 0.2, 0.0}, {0.0, -0.2, 0.8, 0.0}}};
   const auto& ranges = model_.ranges();
   double best = cost ? *cost : refiner.cost(targets, pose);
-  for (const Limb& limb : limbs) {
+  for (size_t l = 0; l < limbs.size(); ++l) {
+    const Limb& limb = limbs[l];
+    if (!(which >> l & 1)) continue;
     const StickPose base = pose;
     const auto configurations = limb.arm ? std::span<const std::array<double, 4>>(arms)
                                          : std::span<const std::array<double, 4>>(legs);
@@ -227,6 +233,26 @@ void MoschiniTracker::start_upright(const Observation& obs) {
   start(best_upright(obs, nullptr));
 }
 
+bool MoschiniTracker::leaves_silhouette_unexplained(const IcpTargets& targets,
+                                                    const StickPose& pose) const {
+  const int every = options_.unexplained.ray_every;
+  std::vector<int> rays, missed;
+  for (size_t i = 0; i < targets.rays.size(); i += every) {
+    const int c = targets.rays[i].camera;
+    if (c < 0) continue;
+    if (c >= static_cast<int>(rays.size())) rays.resize(c + 1, 0), missed.resize(c + 1, 0);
+    ++rays[c];
+  }
+  for (const int i : polisher_.missed_rays(targets, pose, options_.unexplained.miss_m, every)) {
+    if (targets.rays[i].camera >= 0) ++missed[targets.rays[i].camera];
+  }
+  int cameras = 0;
+  for (size_t c = 0; c < rays.size(); ++c) {
+    cameras += missed[c] > 0 && missed[c] >= options_.unexplained.fraction * rays[c];
+  }
+  return cameras >= options_.unexplained.cameras;
+}
+
 TrackStep MoschiniTracker::step(const Observation& obs) {
   if (!started_) throw Error("tracker: step() before start()");
   using Clock = std::chrono::steady_clock;
@@ -259,6 +285,29 @@ TrackStep MoschiniTracker::step(const Observation& obs) {
       StickPose still = pose_;
       silhouette_starter_.refine(targets, still);
       if (polisher_.cost(targets, still) < polisher_.cost(targets, measured)) measured = still;
+    }
+    // Only where the silhouettes are the person's alone, as for the silhouette start, and show
+    // all of it: behind the scene's occluders the restarts put arms where no camera sees them.
+    const UnexplainedOptions& unexplained = options_.unexplained;
+    if (options_.trust_silhouettes && obs.cover.empty() && !obs.widened &&
+        unexplained.fraction > 0 && --unexplained_wait_ <= 0) {
+      if (!leaves_silhouette_unexplained(targets, measured)) {
+        unexplained_backoff_ = 1;
+      } else {
+        StickPose searched = measured;
+        const double kept = arm_searcher_.cost(targets, searched);
+        bool found =
+            search_limbs(targets, searched, kept, &arm_searcher_, kLeftArm | kRightArm) < kept;
+        if (found) {
+          polisher_.refine(targets, searched);
+          found = polisher_.cost(targets, searched) < polisher_.cost(targets, measured);
+          if (found) measured = searched;
+        }
+        // What a search cannot explain (a silhouette too noisy, an arm held where no restart
+        // reaches) is likely still there next frame: the next search waits longer each time.
+        unexplained_backoff_ = found ? 1 : std::min(2 * unexplained_backoff_, unexplained.max_wait);
+        unexplained_wait_ = unexplained_backoff_;
+      }
     }
     diagnose(measured, obs, out);
     const RecoveryOptions& rec = options_.recovery;

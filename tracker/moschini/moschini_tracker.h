@@ -49,6 +49,28 @@ struct RecoveryOptions {
   double margin = 0.8;
 };
 
+// An arm lost into the trunk's volume (the hull merges them; the walks' swinging arms) has no
+// cue to pull it out, but the silhouette of the real arm is then left unexplained in the cameras
+// that see it: when two do, both arms are restarted from search_limbs' typical configurations,
+// fitted by the silhouettes alone, and the best kept if the polish then favours it.
+struct UnexplainedOptions {
+  double miss_m = 0.05;    // a silhouette ray missing every capsule by more is unexplained
+  double fraction = 0.01;  // of one camera's rays, that trigger the search; 0: off
+  int cameras = 2;         // ...in at least this many cameras
+  int ray_every = 4;       // the rays counted: every n-th (the check runs on every frame)
+  int max_wait = 16;       // frames between searches while they find nothing better
+  // How each arm's restarts are fitted and compared, by the silhouettes alone and coarser than
+  // the polish (which then fits the best): a search must not cost more than a few frames.
+  RefineOptions restart = [] {
+    RefineOptions o;
+    o.centerline_weight = 0;
+    o.ray_every = 2;
+    o.rim_step_m = 0.08;
+    o.iterations = 4;
+    return o;
+  }();
+};
+
 struct TrackerOptions {
   JointSet joints = JointSet::urdf;
   // The urdf joint set's limits (MoschiniOptions::limits read through urdfdom).
@@ -103,6 +125,16 @@ struct TrackerOptions {
   // took the wrong leg for the forward one in a stride, or after a jump with the feet together,
   // finds out within n frames. 0: only limbs that cross are tried.
   int swap_check_every = 4;
+  UnexplainedOptions unexplained;
+};
+
+// Limbs as search_limbs takes them, one bit each.
+enum LimbBit : unsigned {
+  kLeftArm = 1,
+  kRightArm = 2,
+  kLeftLeg = 4,
+  kRightLeg = 8,
+  kAllLimbs = 15
 };
 
 struct TrackStep {
@@ -159,8 +191,9 @@ class MoschiniTracker {
   // data, a limb's refinement stays in whatever basin it starts in. Returns the cost of the
   // pose kept; `cost`, when known, is the cost of `pose` as given.
   // `by`: the refinement that fits and scores each restart (the joint refinement unless given).
+  // `which`: the limbs searched (LimbBit), the others left as they are.
   double search_limbs(const IcpTargets& targets, StickPose& pose, std::optional<double> cost = {},
-                      const PoseRefiner* by = nullptr) const;
+                      const PoseRefiner* by = nullptr, unsigned which = kAllLimbs) const;
   // Tries each left/right pair of limbs exchanged (the left leg's angles for the right leg's and
   // back) and keeps whichever fit the data favour: when the pair crosses (the left foot or knee,
   // hand or elbow, right of the right one in the torso's frame), and on every frame when
@@ -168,6 +201,9 @@ class MoschiniTracker {
   // other, the centerline can then lead each limb onto the other's data, and a stride read
   // with the wrong leg forward fits almost as well as the right one.
   void resolve_swapped_limbs(const IcpTargets& targets, StickPose& pose, bool every_pair) const;
+  // Whether `pose` leaves at least UnexplainedOptions::fraction of the silhouette rays of at
+  // least UnexplainedOptions::cameras cameras unexplained (missing every capsule by miss_m).
+  bool leaves_silhouette_unexplained(const IcpTargets& targets, const StickPose& pose) const;
 
   StickModel model_;
   BodySurface surface_;
@@ -176,6 +212,7 @@ class MoschiniTracker {
   PoseRefiner refiner_;
   PoseRefiner polisher_;
   PoseRefiner silhouette_starter_;
+  PoseRefiner arm_searcher_;
   PoseFilter filter_;
   StickPose pose_;
   bool started_ = false;
@@ -183,6 +220,8 @@ class MoschiniTracker {
   int patience_ = 0;  // lost frames in a row that start a recovery search now
   int reinitializations_ = 0;
   int steps_ = 0;
+  int unexplained_wait_ = 0;     // frames until the silhouette is checked again
+  int unexplained_backoff_ = 1;  // the wait after the next search that finds nothing
 };
 
 }  // namespace simcap::tracker

@@ -207,6 +207,7 @@ void Perception::widen(Observation& obs, const OcclusionMap& occlusion) const {
     changed = changed || wide[c].data != obs.silhouettes[c].data;
   }
   if (changed) shape(wide, obs);
+  obs.widened = changed;
 }
 
 }  // namespace simcap::tracker

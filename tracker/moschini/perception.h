@@ -44,6 +44,9 @@ struct Observation {
   // distinct; with background subtraction, others about and a learned appearance): the gate
   // leaves them to the person. Empty otherwise.
   std::vector<cv::Mat> distinct;
+  // Some camera's silhouette was widened where the scene blocks its view of the person
+  // (Perception::widen): there the silhouettes do not show the whole person.
+  bool widened = false;
   GateResult gate;                     // what isolate() kept
   std::vector<double> silhouette_iou;  // per camera vs the dataset's masks, when asked for
   double silhouettes_ms = 0, hull_ms = 0, centerline_ms = 0;

@@ -178,6 +178,39 @@ struct PoseRefiner::Associations {
   std::vector<int> owner;  // per ray, the capsule it was given to (-1: none or not used)
 };
 
+namespace {
+
+// The capsule `ray` passes most inside of (or nearest to) among the parts its colour may show,
+// and by how much it misses its surface (negative inside); (-1, inf) when none may. The search
+// stops at the first capsule the ray passes deeper than `settled_depth_m` inside; `hint`, when
+// not -1, is tried first.
+std::pair<int, double> nearest_capsule(const SilhouetteRay& ray, const PlacedSurface& surface,
+                                       int hint, double settled_depth_m) {
+  Eigen::Vector3d dir;
+  auto miss = [&](int c, double* d) {
+    const PlacedCapsule& capsule = surface[c];
+    return capsule.distance(nearest_on_ray(ray, capsule.a, capsule.a + capsule.ab), d, &dir);
+  };
+  double best = std::numeric_limits<double>::infinity(), d;
+  int owner = -1;
+  if (hint >= 0 && miss(hint, &d)) best = d, owner = hint;
+  for (int c = 0; c < kCapsuleCount && best >= -settled_depth_m; ++c) {
+    const PlacedCapsule& capsule = surface[c];
+    if (c == hint || !(ray.parts >> capsule.segment & 1)) continue;
+    // A sphere bounds its capsule's distance from below: skip the capsule when the ray passes
+    // its sphere no nearer than `best` (in squares; always when best < -bound).
+    const double reach = capsule.bound + best;
+    if (reach <= 0 ||
+        (capsule.centre - ray.origin).cross(ray.direction).squaredNorm() >= reach * reach) {
+      continue;
+    }
+    if (miss(c, &d) && d < best) best = d, owner = c;
+  }
+  return {owner, best};
+}
+
+}  // namespace
+
 PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets, const StickPose& pose,
                                                  const Associations* previous) const {
   const StickGeometry g = model_->geometry(pose);
@@ -217,31 +250,11 @@ PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets, cons
   // reach count at that reach.
   if (!targets.rays.empty() && options_.ray_weight > 0) {
     a.owner.assign(targets.rays.size(), -1);
-    Eigen::Vector3d dir;
-    auto miss = [&](const SilhouetteRay& ray, int c, double* d) {
-      const PlacedCapsule& capsule = surface[c];
-      return capsule.distance(nearest_on_ray(ray, capsule.a, capsule.a + capsule.ab), d, &dir);
-    };
     for (size_t i = 0; i < targets.rays.size(); i += options_.ray_every) {
-      const SilhouetteRay& ray = targets.rays[i];
-      double best = std::numeric_limits<double>::infinity(), d;
-      int owner = -1;
       // The capsule that held the ray at the last association holds it again, mostly: tried
       // first, it settles a ray still deep inside it at once and bounds the others tightly.
-      const int hint = previous ? previous->owner[i] : -1;
-      if (hint >= 0 && miss(ray, hint, &d)) best = d, owner = hint;
-      for (int c = 0; c < kCapsuleCount && best >= -options_.settled_depth_m; ++c) {
-        const PlacedCapsule& capsule = surface[c];
-        if (c == hint || !(ray.parts >> capsule.segment & 1)) continue;
-        // A sphere bounds its capsule's distance from below: skip the capsule when the ray
-        // passes its sphere no nearer than `best` (in squares; always when best < -bound).
-        const double reach = capsule.bound + best;
-        if (reach <= 0 ||
-            (capsule.centre - ray.origin).cross(ray.direction).squaredNorm() >= reach * reach) {
-          continue;
-        }
-        if (miss(ray, c, &d) && d < best) best = d, owner = c;
-      }
+      const auto [owner, best] = nearest_capsule(
+          targets.rays[i], surface, previous ? previous->owner[i] : -1, options_.settled_depth_m);
       a.owner[i] = owner;
       if (owner < 0 || best > options_.ray_max_miss_m) {
         ++a.lost_rays;
@@ -253,6 +266,19 @@ PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets, cons
     }
   }
   return a;
+}
+
+std::vector<int> PoseRefiner::missed_rays(const IcpTargets& targets, const StickPose& pose,
+                                          double min_miss_m, int every) const {
+  std::vector<int> missed;
+  const PlacedSurface surface = place(surface_, model_->geometry(pose));
+  for (size_t i = 0; i < targets.rays.size(); i += every) {
+    // Stopped at the first capsule the ray passes within min_miss_m of: most rays, at once.
+    if (nearest_capsule(targets.rays[i], surface, -1, -min_miss_m).second > min_miss_m) {
+      missed.push_back(static_cast<int>(i));
+    }
+  }
+  return missed;
 }
 
 double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,

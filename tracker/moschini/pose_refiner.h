@@ -2,6 +2,8 @@
 // once, run after Moschini's per-segment ICP; also scores poses for hypothesis tests.
 #pragma once
 
+#include <vector>
+
 #include "tracker/moschini/body_surface.h"
 #include "tracker/moschini/icp_targets.h"
 #include "tracker/moschini/stick_model.h"
@@ -61,6 +63,10 @@ class PoseRefiner {
   // root), angles] as the normal equations build it, with targets.prediction as the motion
   // prior's anchor, as cost() has it. Outline targets are held fixed, as refine() holds them.
   Eigen::VectorXd gradient(const IcpTargets& targets, const StickPose& pose) const;
+  // The indices of every `every`-th silhouette ray that passes farther than `min_miss_m` from
+  // every capsule its colour allows: silhouette the pose leaves unexplained.
+  std::vector<int> missed_rays(const IcpTargets& targets, const StickPose& pose, double min_miss_m,
+                               int every) const;
   const RefineOptions& options() const { return options_; }
 
  private:

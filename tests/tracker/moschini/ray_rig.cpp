@@ -130,11 +130,12 @@ std::vector<SilhouetteRay> silhouette_rays(const StickModel& model, const BodySu
   const PlacedSurface placed = place(surface, model.geometry(pose));
   std::vector<SilhouetteRay> rays;
   if (shown) shown->clear();
-  for (const double angle : azimuths) {
-    const Camera cam = ring_camera(pose, angle);
+  for (size_t k = 0; k < azimuths.size(); ++k) {
+    const Camera cam = ring_camera(pose, azimuths[k]);
     for (int v = 0; v < cam.height; v += stride) {
       for (int x = 0; x < cam.width; x += stride) {
         SilhouetteRay ray{cam.centre(), cam.unproject(Eigen::Vector2d(x, v))};
+        ray.camera = static_cast<int>(k), ray.u = x, ray.v = v;
         int front = -1;
         double front_depth = std::numeric_limits<double>::infinity();
         for (int c = 0; c < kCapsuleCount; ++c) {

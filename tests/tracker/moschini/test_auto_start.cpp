@@ -1,8 +1,11 @@
 // --init auto's body: proportions measured on the first frames of a person standing upright.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "tests/tracker/moschini/ray_rig.h"
 #include "tracker/moschini/auto_start.h"
+#include "tracker/moschini/grid_search.h"
 #include "tracker/moschini/pose_init.h"
 
 namespace simcap::tracker {
@@ -47,6 +50,20 @@ TEST(AutoStart, AnkleHeightIsWintersFractionOfTheStature) {
   for (const double height : {1.5, 1.75, 2.0}) {
     EXPECT_NEAR(ankle_height_from_height(height), 0.039 * height, 0.005) << height;
   }
+}
+
+// A parabola's vertex is found exactly wherever it lies between the grid's points; with noise
+// a tenth of the valley's depth it is found within 0.01 (a golden-section search of 8
+// evaluations stops at 0.89), and a least beyond the range's end gives the end.
+TEST(LeastOnGrid, FindsTheLeastOfAShallowNoisyValley) {
+  auto parabola = [](double x) { return (x - 0.93) * (x - 0.93); };
+  EXPECT_NEAR(least_on_grid(parabola, 0.75, 1.35, 13), 0.93, 1e-12);
+  const double noise = 0.1 * 0.15 * 0.15;
+  auto noisy = [&](double x) { return parabola(x) + noise * std::sin(97 * x); };
+  EXPECT_NEAR(least_on_grid(noisy, 0.75, 1.35, 13), 0.93, 0.01);
+  const double at_end = least_on_grid(parabola, 1.0, 1.6, 13);
+  EXPECT_GE(at_end, 1.0);
+  EXPECT_LE(at_end, 1.05);
 }
 
 }  // namespace
