@@ -123,6 +123,16 @@ RigObservation observe_rig(const StickModel& model, const BodySurface& surface,
   return rig;
 }
 
+RigObservation observe_rig_misled(const StickModel& model, const BodySurface& surface,
+                                  const StickPose& pose, const StickPose& centerline_pose,
+                                  const std::vector<double>& azimuths,
+                                  const Eigen::AlignedBox3d& volume) {
+  RigObservation rig = observe_rig(model, surface, pose, azimuths, volume);
+  rig.observation.points =
+      observe_rig(model, surface, centerline_pose, azimuths, volume).observation.points;
+  return rig;
+}
+
 std::vector<SilhouetteRay> silhouette_rays(const StickModel& model, const BodySurface& surface,
                                            const StickPose& pose, int stride,
                                            const Palette* palette, std::vector<int>* shown,

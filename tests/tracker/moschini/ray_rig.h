@@ -49,6 +49,15 @@ RigObservation observe_rig(const tracker::StickModel& model, const tracker::Body
                            const tracker::StickPose& pose, const std::vector<double>& azimuths,
                            const Eigen::AlignedBox3d& volume);
 
+// The same, with the centerline of `centerline_pose` in place of the pose's own: silhouettes
+// that show one pose and a hull centerline that leads the refinement to another.
+RigObservation observe_rig_misled(const tracker::StickModel& model,
+                                  const tracker::BodySurface& surface,
+                                  const tracker::StickPose& pose,
+                                  const tracker::StickPose& centerline_pose,
+                                  const std::vector<double>& azimuths,
+                                  const Eigen::AlignedBox3d& volume);
+
 // Distance from x to the segment [a, b].
 double segment_distance(const Eigen::Vector3d& x, const Eigen::Vector3d& a,
                         const Eigen::Vector3d& b);

@@ -7,6 +7,7 @@
 
 #include "tests/tracker/moschini/ray_rig.h"
 #include "tests/tracker/moschini/refine_test_support.h"
+#include "tests/tracker/moschini/track_support.h"
 #include "tracker/moschini/moschini_tracker.h"
 
 namespace simcap::tracker {
@@ -17,10 +18,7 @@ TEST(SilhouetteStart, KeepsThePoseTheSilhouettesShowWhenTheCenterlineShowsAnothe
   const BodySurface surface = testing::capsule_surface();
   const StickModel model(dims, JointSet::urdf);
   const StickPose truth = testing::walking_pose();
-  const Eigen::AlignedBox3d volume(truth.t0 - Eigen::Vector3d(1.2, 1.1, 1.2),
-                                   truth.t0 + Eigen::Vector3d(1.2, 1.0, 1.2));
-  testing::RigObservation rig =
-      testing::observe_rig(model, surface, truth, testing::camera_ring(4), volume);
+  const Eigen::AlignedBox3d volume = testing::volume_around(truth);
   // The centerline of the pose with the arms' and the legs' swing exchanged.
   StickPose other = truth;
   for (const auto& [l, r] : {std::pair{kLShoulder1, kRShoulder1},
@@ -30,20 +28,16 @@ TEST(SilhouetteStart, KeepsThePoseTheSilhouettesShowWhenTheCenterlineShowsAnothe
                              {kLKnee, kRKnee}}) {
     std::swap(other.theta[l], other.theta[r]);
   }
-  rig.observation.points =
-      testing::observe_rig(model, surface, other, testing::camera_ring(4), volume)
-          .observation.points;
+  const testing::RigObservation rig =
+      testing::observe_rig_misled(model, surface, truth, other, testing::camera_ring(4), volume);
 
   // Five frames of that observation from the truth; the worst error over elbows, hands, knees
   // and ankles.
   auto worst_error = [&](int iterations) {
     TrackerOptions options;
-    options.use_filter = false;
     options.silhouette_start.iterations = iterations;
-    MoschiniTracker tracker(dims, surface, options);
-    tracker.start(truth);
-    StickPose pose;
-    for (int frame = 0; frame < 5; ++frame) pose = tracker.step(rig.observation).pose;
+    const StickPose pose =
+        testing::track_repeated(dims, surface, options, truth, rig.observation, 5);
     const auto r = model.reference_points(model.geometry(pose));
     const auto t = model.reference_points(model.geometry(truth));
     double worst = 0;

@@ -4,6 +4,7 @@
 
 #include "tests/tracker/moschini/ray_rig.h"
 #include "tests/tracker/moschini/refine_test_support.h"
+#include "tests/tracker/moschini/track_support.h"
 #include "tracker/moschini/moschini_tracker.h"
 
 namespace simcap::tracker {
@@ -19,23 +20,16 @@ TEST(UnexplainedSilhouette, AnArmLostAgainstTheTrunkIsFoundAgain) {
   StickPose lost = truth;  // ...held hanging against the trunk, as a lost arm is
   lost.theta[kRShoulder1] = lost.theta[kRShoulder2] = lost.theta[kRShoulder3] = 0.0;
   lost.theta[kRElbow] = -0.2;
-  const Eigen::AlignedBox3d volume(truth.t0 - Eigen::Vector3d(1.2, 1.1, 1.2),
-                                   truth.t0 + Eigen::Vector3d(1.2, 1.0, 1.2));
-  testing::RigObservation rig =
-      testing::observe_rig(model, surface, truth, testing::camera_ring(4), volume);
+  const Eigen::AlignedBox3d volume = testing::volume_around(truth);
   // The centerline as the lost pose has it, so that the joint refinement holds the arm down.
-  rig.observation.points =
-      testing::observe_rig(model, surface, lost, testing::camera_ring(4), volume)
-          .observation.points;
+  const testing::RigObservation rig =
+      testing::observe_rig_misled(model, surface, truth, lost, testing::camera_ring(4), volume);
 
   auto hand_error = [&](double fraction) {
     TrackerOptions options;
-    options.use_filter = false;
     options.unexplained.fraction = fraction;
-    MoschiniTracker tracker(dims, surface, options);
-    tracker.start(lost);
-    StickPose pose;
-    for (int frame = 0; frame < 4; ++frame) pose = tracker.step(rig.observation).pose;
+    const StickPose pose =
+        testing::track_repeated(dims, surface, options, lost, rig.observation, 4);
     const auto r = model.reference_points(model.geometry(pose));
     const auto t = model.reference_points(model.geometry(truth));
     return (r[kRHandTip] - t[kRHandTip]).norm();
@@ -51,19 +45,13 @@ TEST(UnexplainedSilhouette, AnExplainedSilhouetteStartsNoSearch) {
   const BodySurface surface = testing::capsule_surface();
   const StickModel model(dims, JointSet::urdf);
   const StickPose truth = testing::walking_pose();
-  const Eigen::AlignedBox3d volume(truth.t0 - Eigen::Vector3d(1.2, 1.1, 1.2),
-                                   truth.t0 + Eigen::Vector3d(1.2, 1.0, 1.2));
+  const Eigen::AlignedBox3d volume = testing::volume_around(truth);
   const testing::RigObservation rig =
       testing::observe_rig(model, surface, truth, testing::camera_ring(4), volume);
   auto track = [&](double fraction) {
     TrackerOptions options;
-    options.use_filter = false;
     options.unexplained.fraction = fraction;
-    MoschiniTracker tracker(dims, surface, options);
-    tracker.start(truth);
-    StickPose pose;
-    for (int frame = 0; frame < 3; ++frame) pose = tracker.step(rig.observation).pose;
-    return pose;
+    return testing::track_repeated(dims, surface, options, truth, rig.observation, 3);
   };
   const StickPose with = track(TrackerOptions{}.unexplained.fraction), without = track(0);
   EXPECT_EQ(with.theta, without.theta);
