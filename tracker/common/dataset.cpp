@@ -95,11 +95,11 @@ fs::path Dataset::image_path(int camera, const std::string& kind, int frame) con
   return root_ / cameras_.at(camera).name / kind / frame_file(frame);
 }
 
-cv::Mat Dataset::read(const fs::path& path, int camera, int flags) const {
+cv::Mat Dataset::read(const fs::path& path, int camera, int flags, int rows) const {
   // Decoding is the tracker's largest fixed cost (a mask and a colour image per camera and
   // frame): libpng without the Adler-32 pass, about twice as fast as the OpenImageIO path of
   // core/image_io.h.
-  cv::Mat image = decode_png(path, flags);
+  cv::Mat image = decode_png(path, flags, rows);
   if (image.empty()) {
     throw Error(path.string() + (fs::exists(path) ? ": cannot decode the image" : ": missing"));
   }
@@ -128,8 +128,8 @@ cv::Mat Dataset::others(int camera, int frame) const {
   return (m != 0) & (m != actor_mask_label(actors_, actor_));
 }
 
-cv::Mat Dataset::rgb(int camera, int frame) const {
-  return read(image_path(camera, "rgb", frame), camera, cv::IMREAD_COLOR);
+cv::Mat Dataset::rgb(int camera, int frame, int rows) const {
+  return read(image_path(camera, "rgb", frame), camera, cv::IMREAD_COLOR, rows);
 }
 
 cv::Mat Dataset::background(int camera) const {

@@ -42,7 +42,8 @@ class Dataset {
   // there); an empty Mat when the dataset has one actor.
   cv::Mat others(int camera, int frame) const;
   // Colour frame, CV_8UC3 in the decoder's channel order (the same for rgb() and background()).
-  cv::Mat rgb(int camera, int frame) const;
+  // With `rows` >= 0 only its first `rows` rows are read; the rest are black.
+  cv::Mat rgb(int camera, int frame, int rows = -1) const;
   cv::Mat background(int camera) const;
   // Whether the dataset has the camera's empty-room plate (background/camNN.png).
   bool has_background(int camera) const;
@@ -62,7 +63,7 @@ class Dataset {
   double fps() const;
 
  private:
-  cv::Mat read(const std::filesystem::path& path, int camera, int flags) const;
+  cv::Mat read(const std::filesystem::path& path, int camera, int flags, int rows = -1) const;
   std::filesystem::path root_;
   std::vector<Camera> cameras_;
   std::vector<std::string> actors_;

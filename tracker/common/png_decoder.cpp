@@ -37,9 +37,15 @@ bool read_header(png_structp png, png_infop info, png_uint_32* width, png_uint_3
   return true;
 }
 
-bool read_rows(png_structp png, png_infop info, png_bytepp rows) {
+// All rows, or the first `count` (then the rest of the file, and its CRCs, are not read).
+bool read_rows(png_structp png, png_infop info, png_bytepp rows, png_uint_32 count,
+               png_uint_32 height) {
   if (setjmp(png_jmpbuf(png))) return false;
   png_read_update_info(png, info);
+  if (count < height) {
+    for (png_uint_32 r = 0; r < count; ++r) png_read_row(png, rows[r], nullptr);
+    return true;
+  }
   png_read_image(png, rows);
   png_read_end(png, nullptr);
   return true;
@@ -47,7 +53,7 @@ bool read_rows(png_structp png, png_infop info, png_bytepp rows) {
 
 }  // namespace
 
-cv::Mat decode_png(const std::filesystem::path& path, int flags) {
+cv::Mat decode_png(const std::filesystem::path& path, int flags, int rows) {
   // OpenCV throws for some files it cannot read (a size beyond its own limit) instead of
   // returning an empty image.
   auto fallback = [&] {
@@ -101,16 +107,21 @@ cv::Mat decode_png(const std::filesystem::path& path, int flags) {
   const bool grey = colour == PNG_COLOR_TYPE_GRAY && flags == cv::IMREAD_UNCHANGED;
   const bool rgb = colour == PNG_COLOR_TYPE_RGB;
   if (depth != 8 || interlace != PNG_INTERLACE_NONE || !(grey || rgb)) return fallback();
-  cv::Mat image(static_cast<int>(height), static_cast<int>(width), grey ? CV_8UC1 : CV_8UC3);
-  std::vector<png_bytep> rows(height);
-  for (png_uint_32 r = 0; r < height; ++r) rows[r] = image.ptr(static_cast<int>(r));
-  if (!read_rows(png, info, rows.data())) return fallback();
-  if (grey) return image;
+  const png_uint_32 count = rows >= 0 ? std::min<png_uint_32>(rows, height) : height;
+  const int type = grey ? CV_8UC1 : CV_8UC3, decoded = static_cast<int>(count);
+  cv::Mat image(static_cast<int>(height), static_cast<int>(width), type);
+  std::vector<png_bytep> pointers(height);
+  for (png_uint_32 r = 0; r < height; ++r) pointers[r] = image.ptr(static_cast<int>(r));
+  if (!read_rows(png, info, pointers.data(), count, height)) return fallback();
   // OpenCV's order is BGR. libpng's png_set_bgr swaps byte by byte, a tenth of a frame's
   // tracking; OpenCV's vectorized swap costs a fraction of that.
-  cv::Mat bgr;
-  cv::cvtColor(image, bgr, cv::COLOR_RGB2BGR);
-  return bgr;
+  cv::Mat out = grey ? image : cv::Mat(image.size(), type);
+  if (!grey && decoded > 0) {
+    cv::Mat top = out.rowRange(0, decoded);
+    cv::cvtColor(image.rowRange(0, decoded), top, cv::COLOR_RGB2BGR);
+  }
+  out.rowRange(decoded, out.rows).setTo(0);
+  return out;
 }
 
 }  // namespace simcap::tracker

@@ -12,6 +12,9 @@ namespace simcap::tracker {
 // as colour, damaged files) go to cv::imread. Empty when the file cannot be read or is not a
 // PNG; a header that claims more pixels than limits.h allows throws Error naming the limit
 // (check_image_size).
-cv::Mat decode_png(const std::filesystem::path& path, int flags);
+// With `rows` >= 0 only the image's first `rows` rows are decoded and the rest are left black:
+// a PNG's rows can only be inflated in order, so a caller that reads no pixel below a row stops
+// there.
+cv::Mat decode_png(const std::filesystem::path& path, int flags, int rows = -1);
 
 }  // namespace simcap::tracker

@@ -43,10 +43,16 @@ cv::Mat SilhouetteExtractor::clean(const cv::Mat& mask) const {
   return out;
 }
 
-cv::Mat SilhouetteExtractor::extract(int camera, int frame, cv::Mat* colour) const {
+cv::Mat SilhouetteExtractor::extract(int camera, int frame, cv::Mat* colour,
+                                     bool colour_in_silhouette) const {
   if (method_ == SilhouetteMethod::gt) {
-    if (colour) *colour = dataset_->rgb(camera, frame);
-    return dataset_->mask(camera, frame);
+    cv::Mat mask = dataset_->mask(camera, frame);
+    if (colour) {
+      int rows = mask.rows;
+      while (colour_in_silhouette && rows > 0 && cv::countNonZero(mask.row(rows - 1)) == 0) --rows;
+      *colour = dataset_->rgb(camera, frame, rows);
+    }
+    return mask;
   }
   const cv::Mat image = dataset_->rgb(camera, frame);
   if (colour) *colour = image;

@@ -38,8 +38,10 @@ class SilhouetteExtractor {
   // Which images of the dataset this method reads ("mask" or "rgb").
   std::string image_kind() const { return method_ == SilhouetteMethod::gt ? "mask" : "rgb"; }
   // CV_8UC1, nonzero = actor. Thread-safe. With `colour`, the frame's colour image goes there
-  // too (read once when the method subtracts it from the background).
-  cv::Mat extract(int camera, int frame, cv::Mat* colour = nullptr) const;
+  // too (read once when the method subtracts it from the background); with `colour_in_silhouette`
+  // only down to the silhouette's lowest row, for a caller that reads colours inside it alone.
+  cv::Mat extract(int camera, int frame, cv::Mat* colour = nullptr,
+                  bool colour_in_silhouette = false) const;
 
  private:
   cv::Mat clean(const cv::Mat& mask) const;

@@ -70,7 +70,8 @@ Observation Perception::observe(int frame, bool compare_masks) const {
   // must not pull the body.
   const bool split = others && !gt && options_.colours && appearance_.learned_parts() > 0;
   tbb::parallel_for(0, nc, [&](int c) {
-    silhouettes[c] = silhouettes_.extract(c, frame, options_.colours ? &colours[c] : nullptr);
+    silhouettes[c] =
+        silhouettes_.extract(c, frame, options_.colours ? &colours[c] : nullptr, !split);
     if (gt && others) cover[c] = dataset_->others(c, frame);
     if (split) cover[c] = foreign_pixels(silhouettes[c], colours[c], distinct[c]);
     if (compare_masks)

@@ -2,6 +2,7 @@
 // same refusal of damaged ones.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <random>
@@ -41,6 +42,24 @@ TEST(PngDecoder, DecodesEveryKindOfFileAsOpenCvDoes) {
     for (const int flags : {cv::IMREAD_UNCHANGED, cv::IMREAD_COLOR, cv::IMREAD_GRAYSCALE}) {
       EXPECT_TRUE(same(decode_png(path, flags), cv::imread(path.string(), flags)))
           << name << " flags " << flags;
+    }
+  }
+}
+
+TEST(PngDecoder, DecodesTheFirstRowsOnlyWhenAsked) {
+  testing::TempDir dir;
+  cv::theRNG().state = 5;
+  for (const int type : {CV_8UC1, CV_8UC3}) {
+    const fs::path path = dir / "image.png";
+    ASSERT_TRUE(cv::imwrite(path.string(), noise(type)));
+    const int flags = type == CV_8UC1 ? cv::IMREAD_UNCHANGED : cv::IMREAD_COLOR;
+    const cv::Mat whole = decode_png(path, flags);
+    for (const int rows : {0, 1, 20, 36, 37, 100}) {
+      const cv::Mat top = decode_png(path, flags, rows);
+      ASSERT_EQ(top.size(), whole.size()) << rows;
+      const int kept = std::min(rows, whole.rows);
+      EXPECT_TRUE(same(top.rowRange(0, kept), whole.rowRange(0, kept))) << rows;
+      EXPECT_EQ(cv::countNonZero(top.rowRange(kept, top.rows).reshape(1)), 0) << rows;
     }
   }
 }

@@ -174,5 +174,27 @@ TEST(Silhouettes, TrackScoresTheMasksOfTheMethodItWasGiven) {
   EXPECT_NE(scores[0], scores[1]);
 }
 
+TEST(Silhouettes, ColourInTheSilhouetteIsTheWholeImagesDownToItsLowestRow) {
+  const Dataset ds(noisy_capsules());
+  const SilhouetteExtractor extractor(ds, SilhouetteMethod::gt);
+  int cropped = 0;  // cameras whose image goes on below the silhouette
+  for (int c = 0; c < ds.camera_count(); ++c) {
+    cv::Mat whole, top;
+    const cv::Mat mask = extractor.extract(c, 1, &whole);
+    ASSERT_TRUE(cv::countNonZero(mask) > 0) << c;
+    EXPECT_EQ(cv::norm(extractor.extract(c, 1, &top, true), mask, cv::NORM_INF), 0) << c;
+    int lowest = mask.rows - 1;
+    while (cv::countNonZero(mask.row(lowest)) == 0) --lowest;
+    EXPECT_EQ(cv::norm(top.rowRange(0, lowest + 1), whole.rowRange(0, lowest + 1), cv::NORM_INF), 0)
+        << c;
+    if (lowest + 1 < mask.rows) {
+      ++cropped;
+      EXPECT_EQ(cv::countNonZero(top.rowRange(lowest + 1, top.rows).reshape(1)), 0) << c;
+      EXPECT_GT(cv::countNonZero(whole.rowRange(lowest + 1, whole.rows).reshape(1)), 0) << c;
+    }
+  }
+  EXPECT_GT(cropped, 0);
+}
+
 }  // namespace
 }  // namespace simcap::tracker
