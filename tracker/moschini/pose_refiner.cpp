@@ -1,5 +1,7 @@
 #include "tracker/moschini/pose_refiner.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -39,6 +41,19 @@ std::optional<Eigen::Vector3d> nearest_occupied(const Occupancy& hull, const Eig
     if (best < std::numeric_limits<double>::infinity()) return found;
   }
   return std::nullopt;
+}
+
+// Where a ray passes its capsule: the ray's point nearest the axis, the signed miss of the
+// surface there (negative inside) and the outward direction from the axis.
+struct RayMiss {
+  Eigen::Vector3d on_ray;
+  double miss;
+  Eigen::Vector3d outward;
+};
+
+inline bool miss_of(const SilhouetteRay& ray, const PlacedCapsule& capsule, RayMiss& m) {
+  m.on_ray = nearest_on_ray(ray, capsule.a, capsule.a + capsule.ab);
+  return capsule.distance(m.on_ray, &m.miss, &m.outward);
 }
 
 // The Jacobian of a point carried by one segment: only the torso's six parameters and the
@@ -169,6 +184,10 @@ struct PoseRefiner::Associations {
   };
   std::vector<Sample> contained;          // stick samples off the hull
   std::vector<std::pair<int, int>> rays;  // (ray, the capsule it passes most inside of)
+  // How each of `rays` passes its capsule at `pose`, the pose associated at: the first
+  // evaluation there reuses them.
+  std::vector<RayMiss> misses;
+  StickPose pose;
   // Rays passing deeper than RefineOptions::settled_depth_m inside a capsule: residual 0 here,
   // and counted as 0 for the steps this iteration tries.
   int settled_rays = 0;
@@ -181,19 +200,21 @@ struct PoseRefiner::Associations {
 namespace {
 
 // The capsule `ray` passes most inside of (or nearest to) among the parts its colour may show,
-// and by how much it misses its surface (negative inside); (-1, inf) when none may. The search
-// stops at the first capsule the ray passes deeper than `settled_depth_m` inside; `hint`, when
-// not -1, is tried first.
-std::pair<int, double> nearest_capsule(const SilhouetteRay& ray, const PlacedSurface& surface,
-                                       int hint, double settled_depth_m) {
-  Eigen::Vector3d dir;
+// and how it passes it (`best`); -1 and a miss of inf when none may. The search stops at the
+// first capsule the ray passes deeper than `settled_depth_m` inside; `hint`, when not -1, is
+// tried first.
+int nearest_capsule(const SilhouetteRay& ray, const PlacedSurface& surface, int hint,
+                    double settled_depth_m, RayMiss& best_miss) {
+  RayMiss m;
   auto miss = [&](int c, double* d) {
-    const PlacedCapsule& capsule = surface[c];
-    return capsule.distance(nearest_on_ray(ray, capsule.a, capsule.a + capsule.ab), d, &dir);
+    const bool off_axis = miss_of(ray, surface[c], m);
+    *d = m.miss;
+    return off_axis;
   };
   double best = std::numeric_limits<double>::infinity(), d;
   int owner = -1;
-  if (hint >= 0 && miss(hint, &d)) best = d, owner = hint;
+  best_miss.miss = best;
+  if (hint >= 0 && miss(hint, &d)) best = d, owner = hint, best_miss = m;
   for (int c = 0; c < kCapsuleCount && best >= -settled_depth_m; ++c) {
     const PlacedCapsule& capsule = surface[c];
     if (c == hint || !(ray.parts >> capsule.segment & 1)) continue;
@@ -204,9 +225,9 @@ std::pair<int, double> nearest_capsule(const SilhouetteRay& ray, const PlacedSur
         (capsule.centre - ray.origin).cross(ray.direction).squaredNorm() >= reach * reach) {
       continue;
     }
-    if (miss(c, &d) && d < best) best = d, owner = c;
+    if (miss(c, &d) && d < best) best = d, owner = c, best_miss = m;
   }
-  return {owner, best};
+  return owner;
 }
 
 }  // namespace
@@ -215,6 +236,7 @@ PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets, cons
                                                  const Associations* previous) const {
   const StickGeometry g = model_->geometry(pose);
   Associations a;
+  a.pose = pose;
   // Centerline points: closest stick (Moschini's data-to-model matching), X84 inliers.
   std::vector<ClosestStick> closest(targets.points.size());
   std::vector<double> distances(targets.points.size());
@@ -250,18 +272,31 @@ PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets, cons
   // reach count at that reach.
   if (!targets.rays.empty() && options_.ray_weight > 0) {
     a.owner.assign(targets.rays.size(), -1);
-    for (size_t i = 0; i < targets.rays.size(); i += options_.ray_every) {
-      // The capsule that held the ray at the last association holds it again, mostly: tried
-      // first, it settles a ray still deep inside it at once and bounds the others tightly.
-      const auto [owner, best] = nearest_capsule(
-          targets.rays[i], surface, previous ? previous->owner[i] : -1, options_.settled_depth_m);
-      a.owner[i] = owner;
-      if (owner < 0 || best > options_.ray_max_miss_m) {
+    const int every = options_.ray_every;
+    const int used = (static_cast<int>(targets.rays.size()) + every - 1) / every;
+    std::vector<RayMiss> misses(used);
+    // Half of a frame's fitting, and each ray on its own: the pipeline's other thread, done
+    // with the next frame's perception, takes a share (the result is the same in any order).
+    tbb::parallel_for(tbb::blocked_range<int>(0, used, 256), [&](const tbb::blocked_range<int>& r) {
+      for (int k = r.begin(); k < r.end(); ++k) {
+        const size_t i = static_cast<size_t>(k) * every;
+        // The capsule that held the ray at the last association holds it again, mostly: tried
+        // first, it settles a ray still deep inside it at once and bounds the others tightly.
+        a.owner[i] = nearest_capsule(targets.rays[i], surface, previous ? previous->owner[i] : -1,
+                                     options_.settled_depth_m, misses[k]);
+      }
+    });
+    for (int k = 0; k < used; ++k) {
+      const size_t i = static_cast<size_t>(k) * every;
+      const int owner = a.owner[i];
+      const RayMiss& m = misses[k];
+      if (owner < 0 || m.miss > options_.ray_max_miss_m) {
         ++a.lost_rays;
-      } else if (best < -options_.settled_depth_m) {
+      } else if (m.miss < -options_.settled_depth_m) {
         ++a.settled_rays;
       } else {
         a.rays.emplace_back(static_cast<int>(i), owner);
+        a.misses.push_back(m);
       }
     }
   }
@@ -274,7 +309,9 @@ std::vector<int> PoseRefiner::missed_rays(const IcpTargets& targets, const Stick
   const PlacedSurface surface = place(surface_, model_->geometry(pose));
   for (size_t i = 0; i < targets.rays.size(); i += every) {
     // Stopped at the first capsule the ray passes within min_miss_m of: most rays, at once.
-    if (nearest_capsule(targets.rays[i], surface, -1, -min_miss_m).second > min_miss_m) {
+    RayMiss m;
+    nearest_capsule(targets.rays[i], surface, -1, -min_miss_m, m);
+    if (m.miss > min_miss_m) {
       missed.push_back(static_cast<int>(i));
     }
   }
@@ -314,16 +351,18 @@ double PoseRefiner::evaluate(const IcpTargets& targets, const Associations& a,
   const double wr2 = options_.ray_weight * options_.ray_weight;
   normal.add_zero(a.settled_rays);
   normal.add_constant(a.lost_rays, options_.ray_max_miss_m, wr2);
-  for (const auto& [i, c] : a.rays) {
-    const PlacedCapsule& capsule = surface[c];
-    const Eigen::Vector3d q = nearest_on_ray(targets.rays[i], capsule.a, capsule.a + capsule.ab);
-    double e;
-    Eigen::Vector3d dir;
-    if (!capsule.distance(q, &e, &dir) || e <= 0) {
+  const bool associated_here =
+      pose.t0 == a.pose.t0 && pose.R0 == a.pose.R0 && pose.theta == a.pose.theta;
+  for (size_t k = 0; k < a.rays.size(); ++k) {
+    const auto [i, c] = a.rays[k];
+    RayMiss computed;
+    const RayMiss& m = associated_here ? a.misses[k] : computed;
+    if ((!associated_here && !miss_of(targets.rays[i], surface[c], computed)) || m.miss <= 0) {
       normal.add_zero();
       continue;
     }
-    normal.add_scalar(normal.jacobian(capsule.segment, q - e * dir), -dir, e, wr2);
+    normal.add_scalar(normal.jacobian(surface[c].segment, m.on_ray - m.miss * m.outward),
+                      -m.outward, m.miss, wr2);
   }
   if (targets.views && options_.rim_weight > 0) {
     const double w2 = options_.rim_weight * options_.rim_weight;
