@@ -18,6 +18,7 @@ struct IkEvalArgs {
   std::filesystem::path motion, out;
   std::string method = "sik";
   std::vector<double> pelvis_weights = {1.0, 1.0, 0.0};
+  double pelvis_travel = 0.0;
   double damping = 0.75;
   bool no_limits = false;
   bool anatomical_hinges = false;
@@ -53,7 +54,8 @@ nlohmann::json worst_seconds(const IkEvalResult& r, double fps, int count) {
 IkEvalResult evaluate_solver(const IkEvalArgs& a, const IkClip& clip, const std::string& method,
                              const std::filesystem::path& out, bool verbose) {
   IkSolverSettings settings;
-  settings.pelvis_weights = {a.pelvis_weights[0], a.pelvis_weights[1], a.pelvis_weights[2]};
+  settings.pelvis_weights = {a.pelvis_weights[0], a.pelvis_weights[1], a.pelvis_weights[2],
+                             a.pelvis_travel};
   settings.limits = !a.no_limits;
   settings.dls_damping = a.damping;
   settings.sik_swivel = a.swivel == "reference"        ? SikSwivel::reference
@@ -87,6 +89,7 @@ IkEvalResult evaluate_solver(const IkEvalArgs& a, const IkClip& clip, const std:
                             {"fps", clip.motion.fps},
                             {"height_m", r.height},
                             {"pelvis_weights", a.pelvis_weights},
+                            {"pelvis_travel", a.pelvis_travel},
                             {"limits", !a.no_limits},
                             {"hinge_axes", a.anatomical_hinges ? "anatomical" : "from the clip"},
                             {"known_orientations", a.known_orientations},
@@ -199,6 +202,12 @@ void add_ik_eval(CLI::App& app, Action& action) {
                   "(thesis: 1,1,0 for Boxing and Jump Kick; 0.1,0.1,1 for Playground)")
       ->expected(3)
       ->delimiter(',')
+      ->check(non_negative_number())
+      ->capture_default_str();
+  cmd->add_option("--pelvis-travel", args.pelvis_travel,
+                  "Weight of the pelvis X that faces the pelvis' last 0.3 m of travel, times its "
+                  "agreement with the limbs' X (none for side or backward steps; not the "
+                  "thesis')")
       ->check(non_negative_number())
       ->capture_default_str();
   cmd->add_option("--damping", args.damping,

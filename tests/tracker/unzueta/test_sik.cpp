@@ -464,6 +464,36 @@ TEST(SikPelvis, EstimatesTheFrameFromHeadWristsAndAnkles) {
   EXPECT_TRUE(estimator.estimate(turned).col(0).isApprox(-x, 1e-12));
 }
 
+// The travel cue: walking forward along +Z with the limbs' X 0.6 rad off the true +X, the
+// travel weight turns X toward +X once the pelvis has moved a stride; a side step (travel along
+// X) or a backward step leaves the limbs' X as it is.
+TEST(SikPelvis, TravelTurnsTheHeadingOnlyWhenWalkingForward) {
+  // The heading of X (radians from +X toward -Z) after 40 frames of constant steps.
+  auto heading_after = [](const Eigen::Vector3d& step, double limbs_heading, double travel) {
+    const Eigen::Vector3d limbs_x(std::cos(limbs_heading), 0, -std::sin(limbs_heading));
+    SikPelvisEstimator estimator(SikPelvisWeights{1, 1, 0, travel});
+    Eigen::Matrix3d frame;
+    for (int f = 0; f <= 40; ++f) {
+      SikTargets t;
+      t.pelvis = Eigen::Vector3d(0, 1, 0) + f * step;
+      t.head = t.pelvis + Eigen::Vector3d(0, 0.7, 0);
+      t.wrist = {t.pelvis + 0.2 * limbs_x, t.pelvis - 0.2 * limbs_x};
+      t.ankle = {t.pelvis + 0.1 * limbs_x - Eigen::Vector3d(0, 0.9, 0),
+                 t.pelvis - 0.1 * limbs_x - Eigen::Vector3d(0, 0.9, 0)};
+      frame = estimator.estimate(t);
+    }
+    return std::atan2(-frame(2, 0), frame(0, 0));
+  };
+  const Eigen::Vector3d forward(0, 0, 0.01);  // m per frame: a stride after 30 frames
+  EXPECT_NEAR(heading_after(forward, 0.6, 0.0), 0.6, 1e-9);
+  const double turned = heading_after(forward, 0.6, 2.0);
+  EXPECT_GT(turned, 0.0);
+  EXPECT_LT(turned, 0.4);
+  EXPECT_NEAR(heading_after(-forward, 0.6, 2.0), 0.6, 1e-9);
+  EXPECT_NEAR(heading_after(Eigen::Vector3d(0.01, 0, 0), 0.0, 2.0), 0.0, 1e-9);
+  EXPECT_NEAR(heading_after(0.1 * forward, 0.6, 2.0), 0.6, 1e-9);  // 4 cm: no stride yet
+}
+
 // Alg. 10-11: a trunk twisted about its long axis (pelvis turned 0.5 rad, the head back to the
 // front) is invisible to positions; with the orientations known the pelvis takes the measured
 // heading and the vertebrae turn the skullbase onto the measured one, the head staying on target.
