@@ -2,7 +2,9 @@
 // rays and outlines, and the refinement pulling a displaced limb back onto the rays of its
 // silhouette.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
+#include <cmath>
 #include <random>
 
 #include "tests/tracker/moschini/ray_rig.h"
@@ -104,6 +106,35 @@ TEST(PoseRefiner, SilhouetteRaysPullADisplacedArmBack) {
   refiner.refine(targets, pose);
   EXPECT_LT(refiner.cost(targets, pose), 0.1 * cost_before);
   EXPECT_LT((hand(pose) - hand(truth)).norm(), 0.04);
+}
+
+// The rays are associated in parallel; the fit must not depend on how many threads share them.
+TEST(PoseRefiner, FitsTheSameOnOneThreadAsOnSeveral) {
+  const StickModel model(testing::capsule_body(), JointSet::urdf);
+  const StickPose truth = walking_pose();
+  IcpTargets targets;
+  targets.rays = silhouette_rays(model, testing::capsule_surface(), truth, 3);
+  ASSERT_GT(targets.rays.size(), 512u);  // more than two of the association's blocks of rays
+  StickPose start = truth;
+  start.theta[kLShoulder1] = 0.15;
+  start.theta[kLElbow] = -0.2;
+  const PoseRefiner refiner(model, testing::capsule_surface(),
+                            testing::converging_without_priors());
+  auto fit = [&](int threads) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    StickPose pose = start;
+    refiner.refine(targets, pose);
+    return std::pair{pose, refiner.cost(targets, pose)};
+  };
+  const auto [one, one_cost] = fit(1);
+  for (const int threads : {2, 4}) {
+    const auto [many, many_cost] = fit(threads);
+    EXPECT_EQ(many.t0, one.t0) << threads;
+    EXPECT_EQ(many.R0, one.R0) << threads;
+    EXPECT_EQ(many.theta, one.theta) << threads;
+    EXPECT_EQ(many_cost, one_cost) << threads;
+  }
+  EXPECT_GT(std::abs(one.theta[kLShoulder1] - start.theta[kLShoulder1]), 0.1);  // it did fit
 }
 
 // The gradient the normal equations build, against central differences of the cost itself,
