@@ -206,26 +206,20 @@ namespace {
 int nearest_capsule(const SilhouetteRay& ray, const PlacedSurface& surface, int hint,
                     double settled_depth_m, RayMiss& best_miss) {
   RayMiss m;
-  auto miss = [&](int c, double* d) {
-    const bool off_axis = miss_of(ray, surface[c], m);
-    *d = m.miss;
-    return off_axis;
-  };
-  double best = std::numeric_limits<double>::infinity(), d;
   int owner = -1;
-  best_miss.miss = best;
-  if (hint >= 0 && miss(hint, &d)) best = d, owner = hint, best_miss = m;
-  for (int c = 0; c < kCapsuleCount && best >= -settled_depth_m; ++c) {
+  best_miss.miss = std::numeric_limits<double>::infinity();
+  if (hint >= 0 && miss_of(ray, surface[hint], m)) owner = hint, best_miss = m;
+  for (int c = 0; c < kCapsuleCount && best_miss.miss >= -settled_depth_m; ++c) {
     const PlacedCapsule& capsule = surface[c];
     if (c == hint || !(ray.parts >> capsule.segment & 1)) continue;
     // A sphere bounds its capsule's distance from below: skip the capsule when the ray passes
-    // its sphere no nearer than `best` (in squares; always when best < -bound).
-    const double reach = capsule.bound + best;
+    // its sphere no nearer than the best miss so far (in squares; always when that is < -bound).
+    const double reach = capsule.bound + best_miss.miss;
     if (reach <= 0 ||
         (capsule.centre - ray.origin).cross(ray.direction).squaredNorm() >= reach * reach) {
       continue;
     }
-    if (miss(c, &d) && d < best) best = d, owner = c, best_miss = m;
+    if (miss_of(ray, capsule, m) && m.miss < best_miss.miss) owner = c, best_miss = m;
   }
   return owner;
 }

@@ -43,13 +43,14 @@ void slice_blobs(const cv::Mat& slice, const Span& span, int axis, const Occupan
   if (n <= 1) return;
   // The centroids in the whole slice's coordinates, exactly as labelling it whole gives them:
   // the sums of the cells' coordinates are integers (recovered from the mean) over the area.
+  const long long offset[2] = {roi.x, roi.y};
   for (int l = 1; l < n; ++l) {
-    const double area = stats.at<int>(l, cv::CC_STAT_AREA);
+    const long long area = stats.at<int>(l, cv::CC_STAT_AREA);
     double* c = centroids.ptr<double>(l);
-    c[0] = static_cast<double>(std::llround(c[0] * area) + static_cast<long long>(roi.x) * area) /
-           area;
-    c[1] = static_cast<double>(std::llround(c[1] * area) + static_cast<long long>(roi.y) * area) /
-           area;
+    for (int a = 0; a < 2; ++a) {
+      const long long sum = std::llround(c[a] * static_cast<double>(area)) + offset[a] * area;
+      c[a] = static_cast<double>(sum) / static_cast<double>(area);
+    }
   }
   // Second moments per blob for the elongation test (connectedComponentsWithStats has none).
   std::vector<Eigen::Vector3d>& moments = work.moments;  // Σxx, Σyy, Σxy per blob
