@@ -48,6 +48,23 @@ std::vector<std::array<float, 3>> sample_pattern(int samples) {
   return out;
 }
 
+// Writes a 4x4 block's lanes into its image rows: whole rows at once when every lane is inside
+// the tile, otherwise lane by lane where `valid`.
+template <typename T>
+inline void store_block(const T* lanes, const int* valid, bool whole_block, int px,
+                        T* const* rows) {
+  constexpr int B = CameraRays::kBlock;
+  for (int r = 0; r < B; ++r) {
+    if (whole_block) {
+      std::memcpy(rows[r] + px, lanes + r * B, B * sizeof(T));
+      continue;
+    }
+    for (int c = 0; c < B; ++c) {
+      if (valid[r * B + c]) rows[r][px + c] = lanes[r * B + c];
+    }
+  }
+}
+
 }  // namespace
 
 struct Renderer::ShotState {
@@ -197,10 +214,11 @@ SIMCAP_AVX2_CLONES void Renderer::trace_camera_rays(const ShotState& shot, int p
   const CameraRays& rays = *shot.rays;
   auto& ray = l.packet.ray;
   if (sample == 0) {
+    // memcpy of a constant size is inlined as vector moves; std::copy_n became memmove calls.
     const float* block = rays.block(px / B, py / B);
-    std::copy_n(block, N, ray.dir_x);
-    std::copy_n(block + N, N, ray.dir_y);
-    std::copy_n(block + 2 * N, N, ray.dir_z);
+    std::memcpy(ray.dir_x, block, sizeof ray.dir_x);
+    std::memcpy(ray.dir_y, block + N, sizeof ray.dir_y);
+    std::memcpy(ray.dir_z, block + 2 * N, sizeof ray.dir_z);
   } else {
     alignas(64) float jx[N], jy[N];
     const std::array<float, 3>& p = pattern_[sample];
@@ -452,11 +470,13 @@ SIMCAP_AVX2_CLONES RayCounts Renderer::render_tile(const ShotState& shot, const 
       rgb_rows[r] = view.rgb.ptr<cv::Vec3b>(y);
     }
     for (int px = tile.x0; px < tile.x1; px += B) {
+      const bool whole_block = px + B <= tile.x1 && py + B <= tile.y1;
+      int valid_lanes = 0;
       for (int k = 0; k < N; ++k) {
         l.valid[k] = px + k % B < tile.x1 && py + k / B < tile.y1 ? -1 : 0;
-        l.red[k] = l.green[k] = l.blue[k] = 0.f;
-        counts.camera += l.valid[k] ? last_sample + 1 : 0;
+        valid_lanes -= l.valid[k];
       }
+      counts.camera += static_cast<std::uint64_t>(valid_lanes * samples_);
       if (last_sample > 0) {
         for (int k = 0; k < N; ++k) {
           const std::uint64_t pixel =
@@ -472,24 +492,36 @@ SIMCAP_AVX2_CLONES RayCounts Renderer::render_tile(const ShotState& shot, const 
         look_up_surfaces(l);
         if (s == 0) {
           const float* z_scale = rays.block(px / B, py / B) + 3 * N;
+          alignas(64) float depth[N];
+          alignas(64) std::uint8_t mask[N], parts[N];
           for (int k = 0; k < N; ++k) {
-            const float depth = l.hit[k] ? l.packet.ray.tfar[k] * z_scale[k] : kInf;
-            const int x = px + k % B, row = k / B;
-            if (!l.valid[k]) continue;
-            depth_rows[row][x] = depth;
-            mask_rows[row][x] = static_cast<std::uint8_t>(
+            depth[k] = l.hit[k] ? l.packet.ray.tfar[k] * z_scale[k] : kInf;
+            mask[k] = static_cast<std::uint8_t>(
                 l.actor[k] < 0 ? 0 : (single_actor ? 255 : l.actor[k] + 1));
-            parts_rows[row][x] = static_cast<std::uint8_t>(l.part[k]);
-            if (normals_) {
-              view.normal.at<cv::Vec3f>(py + row, x) =
+            parts[k] = static_cast<std::uint8_t>(l.part[k]);
+          }
+          store_block(depth, l.valid, whole_block, px, depth_rows);
+          store_block(mask, l.valid, whole_block, px, mask_rows);
+          store_block(parts, l.valid, whole_block, px, parts_rows);
+          if (normals_) {
+            for (int k = 0; k < N; ++k) {
+              if (!l.valid[k]) continue;
+              view.normal.at<cv::Vec3f>(py + k / B, px + k % B) =
                   cv::Vec3f(l.normal[0][k], l.normal[1][k], l.normal[2][k]);
             }
           }
-        }
-        for (int k = 0; k < N; ++k) {
-          l.red[k] += ambient_ * l.albedo[0][k];
-          l.green[k] += ambient_ * l.albedo[1][k];
-          l.blue[k] += ambient_ * l.albedo[2][k];
+          // The first sample starts the sums: the same bits as adding to 0 (no product is -0).
+          for (int k = 0; k < N; ++k) {
+            l.red[k] = ambient_ * l.albedo[0][k];
+            l.green[k] = ambient_ * l.albedo[1][k];
+            l.blue[k] = ambient_ * l.albedo[2][k];
+          }
+        } else {
+          for (int k = 0; k < N; ++k) {
+            l.red[k] += ambient_ * l.albedo[0][k];
+            l.green[k] += ambient_ * l.albedo[1][k];
+            l.blue[k] += ambient_ * l.albedo[2][k];
+          }
         }
         for (const LightSource& light : shot.lights) {
           counts.shadow += static_cast<std::uint64_t>(add_light(light, l));
