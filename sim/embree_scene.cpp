@@ -64,8 +64,10 @@ EmbreeScene::EmbreeScene(BodyBvhUpdate body_update, int time_steps, int still_st
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw Error("Embree: cannot create a device");
   scene_ = new_dynamic_scene(device_);
+  casters_ = new_dynamic_scene(device_);
   if (still_step >= 0) {
     still_scene_ = new_dynamic_scene(device_);
+    still_casters_ = new_dynamic_scene(device_);
     // The time Embree gives step s of n: s / (n - 1), in float as the rays carry it.
     still_time_ = static_cast<float>(still_step) / static_cast<float>(time_steps - 1);
   }
@@ -84,6 +86,8 @@ EmbreeScene::~EmbreeScene() {
     if (b->still_instanced_scene) rtcReleaseScene(b->still_instanced_scene);
   }
   if (still_scene_) rtcReleaseScene(still_scene_);
+  if (still_casters_) rtcReleaseScene(still_casters_);
+  rtcReleaseScene(casters_);
   rtcReleaseScene(scene_);
   rtcReleaseDevice(device_);
 }
@@ -95,9 +99,14 @@ void EmbreeScene::check_device(const char* what) const {
   }
 }
 
-unsigned EmbreeScene::attach(RTCGeometry geometry, RTCGeometry still, Entry entry) {
+unsigned EmbreeScene::attach(RTCGeometry geometry, RTCGeometry still, Entry entry,
+                             bool casts_shadows) {
   const unsigned id = rtcAttachGeometry(scene_, geometry);
   if (still_scene_ && still) rtcAttachGeometryByID(still_scene_, still, id);
+  if (casts_shadows) {
+    rtcAttachGeometryByID(casters_, geometry, id);
+    if (still_casters_ && still) rtcAttachGeometryByID(still_casters_, still, id);
+  }
   if (entries_.size() <= id) entries_.resize(id + 1);
   entries_[id] = entry;
   return id;
@@ -127,7 +136,7 @@ void EmbreeScene::add_static(const TriangleMesh& mesh, const StaticLook& look, b
   e.tex_u = look.tex_u;
   e.tex_v = look.tex_v;
   statics_.push_back(std::move(s));
-  attach(g, g, e);
+  attach(g, g, e, casts_shadows);
   rtcReleaseGeometry(g);
   check_device("adding static geometry");
 }
@@ -223,7 +232,7 @@ int EmbreeScene::add_actor(int body_index, const std::array<Rgb, kMaterialRegion
     a.still_geometry = body.still_geometry;
     body.attached = true;
   }
-  attach(a.geometry, a.still_geometry, actor_entry(index));
+  attach(a.geometry, a.still_geometry, actor_entry(index), true);
   update_bounds(a);
   actors_.push_back(a);
   set_actor_transform(index, Eigen::Isometry3d::Identity());
@@ -326,8 +335,9 @@ void EmbreeScene::set_actors_visible(bool visible) {
 }
 
 void EmbreeScene::commit() {
-  rtcCommitScene(scene_);
-  if (still_scene_) rtcCommitScene(still_scene_);
+  for (RTCScene s : {scene_, still_scene_, casters_, still_casters_}) {
+    if (s) rtcCommitScene(s);
+  }
   check_device("building the scene");
 }
 

@@ -106,6 +106,12 @@ class EmbreeScene {
   template <int N>
   RTCScene scene_for(const int* valid, const float* const org[3], const float* const dir[3],
                      const float* far) const;
+  // What shadow rays trace where camera rays trace `scene` (scene_at's or scene_for's answer):
+  // the same geometry ids but only the shadow casters (actors and occluders), so that shadow rays
+  // never traverse the room's surfaces, which their mask would reject at every triangle anyway.
+  RTCScene casters_of(RTCScene scene) const {
+    return scene == still_scene_ ? still_casters_ : casters_;
+  }
   int actor_count() const { return static_cast<int>(actors_.size()); }
 
   // The actor a hit belongs to (-1: room or occluder); cheaper than surface().
@@ -162,8 +168,9 @@ class EmbreeScene {
   };
   static Entry actor_entry(int actor);
   void update_bounds(Actor& actor);
-  // Attaches `geometry` to the scene and `still` (if any) to the still scene, under one id.
-  unsigned attach(RTCGeometry geometry, RTCGeometry still, Entry entry);
+  // Attaches `geometry` to the scene and `still` (if any) to the still scene, under one id, and
+  // each to its casters' scene when it casts shadows.
+  unsigned attach(RTCGeometry geometry, RTCGeometry still, Entry entry, bool casts_shadows);
   // A body's triangle geometry reading `steps` time steps from `first_step` of its vertices.
   RTCGeometry new_body_geometry(Body& body, int first_step, int steps);
   RTCScene new_body_scene(RTCGeometry body_geometry);
@@ -172,6 +179,7 @@ class EmbreeScene {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   RTCScene still_scene_ = nullptr;
+  RTCScene casters_ = nullptr, still_casters_ = nullptr;  // see casters_of()
   BodyBvhUpdate body_update_;
   int time_steps_ = 1;
   int still_step_ = -1;

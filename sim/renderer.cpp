@@ -381,6 +381,7 @@ SIMCAP_AVX2_CLONES int Renderer::add_light(const LightSource& light, Lanes& l) c
       const float* const org[3] = {shadow.org_x, shadow.org_y, shadow.org_z};
       scene = embree_.scene_for<N>(lit, org, dir, shadow.tfar);
     }
+    scene = embree_.casters_of(scene);
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     occluded_packet<N>(lit, scene, &context, shadow);

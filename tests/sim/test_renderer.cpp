@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <limits>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core/eigen.hpp>
 #include <opencv2/imgproc.hpp>
@@ -161,6 +162,40 @@ TEST(Renderer, LambertShadingWithAndWithoutShadow) {
   // +X is on the image's left here (looking down with +Z up in the image).
   EXPECT_EQ(view.rgb.at<cv::Vec3b>(24, 10)[0], encode(0.2f + 0.7f));  // lit floor at x > 0
   EXPECT_EQ(view.rgb.at<cv::Vec3b>(24, 54)[0], encode(0.2f));         // box shadow at x < 0
+}
+
+// Shadow rays trace a scene of the shadow casters alone: a ray down through a caster and the
+// floor meets the caster under the same geometry id, one beside it meets nothing, while camera
+// rays meet both; likewise for the still scene that motion blur adds.
+TEST(EmbreeScene, ShadowRaysTraceOnlyTheShadowCasters) {
+  EmbreeScene embree(BodyBvhUpdate::refit, 3, 1);
+  embree.add_static(quad({0, 0, 0}, {5, 0, 0}, {0, 0, 5}), {}, false);
+  embree.add_static(quad({-2.5f, 1, 0}, {2.5f, 0, 0}, {0, 0, 5}), {}, true);
+  embree.commit();
+  auto first_hit = [](RTCScene scene, float x) {
+    RTCRayHit rh{};
+    rh.ray.org_x = x;
+    rh.ray.org_y = 3;
+    rh.ray.dir_y = -1;
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.ray.mask = ~0u;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcIntersect1(scene, &context, &rh);
+    return rh.hit.geomID;
+  };
+  for (const RTCScene camera_scene : {embree.handle(), embree.scene_at(0.5f)}) {
+    const RTCScene casters = embree.casters_of(camera_scene);
+    EXPECT_NE(casters, camera_scene);
+    const unsigned caster = first_hit(camera_scene, -1.f), floor = first_hit(camera_scene, 1.f);
+    ASSERT_NE(caster, RTC_INVALID_GEOMETRY_ID);
+    ASSERT_NE(floor, RTC_INVALID_GEOMETRY_ID);
+    EXPECT_NE(caster, floor);
+    EXPECT_EQ(first_hit(casters, -1.f), caster);
+    EXPECT_EQ(first_hit(casters, 1.f), RTC_INVALID_GEOMETRY_ID);
+  }
+  EXPECT_NE(embree.casters_of(embree.handle()), embree.casters_of(embree.scene_at(0.5f)));
 }
 
 TEST(CameraRays, PixelRaysAreTheCameraModelsAndJitteredRaysInterpolateIt) {
