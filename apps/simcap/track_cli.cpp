@@ -117,6 +117,8 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
   add_choice(cmd, "--init", o.init, kInitMethods,
              "First pose: gt (ground truth of the first frame; sik from pixels: the part labels "
              "and the truth's body) or auto (moschini: the hull of a person standing upright; "
+             "with others in view and bgsub/mog2, the --actor's mask on the first frames points "
+             "at whom to start on; "
              "monocular: an upright person facing the camera; sik: the calibration posture, hands "
              "raised beside the head, facing the camera)");
   cmd->add_option("--voxel", o.moschini.voxel_m, "moschini: visual hull voxel size, metres")

@@ -60,6 +60,10 @@ constexpr int kStartFrames = 5;
 // the centerline's offsets again and from then on trusts the silhouettes, as --init gt does
 // from the first frame (MOSCHINI.md, "`--init auto` now"): 3 and 5 did worse on main's start.
 constexpr int kRefitFrame = 4;
+// --init auto among others with silhouettes that show everyone: the silhouette pixels this close
+// to the person's own mask are theirs (background subtraction's outline differs from the
+// rendered one by a few pixels: shadows, the clean-up's closing).
+constexpr int kPointReachPx = 6;
 
 // The lower ankle's height at `pose`.
 double ankle_of(const StickModel& model, const StickPose& pose) {
@@ -156,6 +160,26 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
       plates.push_back(ds.has_background(c) ? ds.background(c) : cv::Mat());
     occlusion.emplace(ds.cameras(), plates);
   }
+  // The parts the first frame hides from a camera, told at once by the first pose.
+  auto learn_occlusion = [&](const StickModel& model, const StickPose& pose, Observation& obs) {
+    if (!occlusion) return;
+    occlusion->observe(place(typical_surface(model.dimensions()), model.geometry(pose)),
+                       obs.silhouettes);
+    perception.widen(obs, *occlusion);
+  };
+  // Who wears what, learned on the first frame. Background subtraction shows everyone: the
+  // person's colours are learned in the views where no one else touches them, and the others'
+  // from their pixels (`dropped`).
+  auto learn_colours = [&](const StickModel& model, const BodySurface& surface,
+                           const StickPose& pose, const Observation& obs,
+                           const std::vector<cv::Mat>& dropped) {
+    if (!popt.colours) return;
+    const bool mixed = others && method != SilhouetteMethod::gt;
+    AppearanceModel appearance(model, surface, pose,
+                               mixed ? perception.rays_apart(obs, dropped) : obs.rays);
+    if (mixed) appearance.learn_others(perception.colours_under(obs.frame, dropped));
+    perception.set_appearance(appearance);
+  };
   if (options.init == InitMethod::gt) {
     // The first frame's joints give the sticks and the pose; its silhouettes the capsules, and
     // where the hull's centerline runs relative to the trunk's and head's joint lines.
@@ -171,23 +195,11 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
       perception.isolate(first, place(typical_surface(dims), plain.geometry(start)), &dropped);
       others_before = first.gate.others;
     }
-    if (occlusion) {
-      // The true pose tells at once which parts the first frame hides from a camera.
-      occlusion->observe(place(typical_surface(dims), plain.geometry(start)), first.silhouettes);
-      perception.widen(first, *occlusion);
-    }
+    learn_occlusion(plain, start, first);
     const FittedBody body = fit_body(dims, topt, start, first);
     dims = body.dims;
     const BodySurface& surface = body.surface;
-    if (popt.colours) {
-      // Background subtraction shows everyone: the person's colours are learned in the views
-      // where no one else touches them, and the others' from the pixels the gate dropped.
-      const bool mixed = others && method != SilhouetteMethod::gt;
-      AppearanceModel appearance(plain, surface, start,
-                                 mixed ? perception.rays_apart(first, dropped) : first.rays);
-      if (mixed) appearance.learn_others(perception.colours_under(first.frame, dropped));
-      perception.set_appearance(appearance);
-    }
+    learn_colours(plain, surface, start, first, dropped);
     tracker.emplace(dims, surface, topt);
     tracker->start(start);
     last_body = place(surface, plain.geometry(start));
@@ -198,7 +210,11 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
     topt.trust_silhouettes = false;
     std::vector<Observation> first;
     for (int i = 0; i < std::min<int>(kStartFrames, static_cast<int>(frames.size())); ++i) {
-      first.push_back(perception.observe(frames[i]));
+      Observation obs = perception.observe(frames[i]);
+      // Silhouettes that show everyone: the person's own mask says which of them to start on.
+      if (others && method != SilhouetteMethod::gt) perception.point_at_person(obs, kPointReachPx);
+      perception.abstain_until_seen(obs);
+      first.push_back(std::move(obs));
     }
     AutoStart start;
     try {
@@ -206,11 +222,13 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
     } catch (const Error& e) {
       throw Error(dataset_path.string() + ": " + e.what());
     }
-    // The capsules are fitted to the first pose; the tracker restarts with them.
     const StickModel model(start.dims, topt.joints, topt.urdf_limits);
+    learn_occlusion(model, start.pose, first.front());
+    // The capsules are fitted to the first pose; the tracker restarts with them.
     const BodySurface surface = fit_surface(model, start.pose, typical_surface(start.dims),
                                             first.front().rays, first.front().views);
-    if (popt.colours) perception.set_appearance({model, surface, start.pose, first.front().rays});
+    // The pixels the person's mask did not point at are the others'.
+    learn_colours(model, surface, start.pose, first.front(), first.front().cover);
     tracker.emplace(start.dims, surface, topt);
     tracker->start(start.pose);
     last_body = place(surface, model.geometry(start.pose));

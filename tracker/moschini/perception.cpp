@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <numeric>
 #include <opencv2/imgproc.hpp>
 
 namespace simcap::tracker {
@@ -110,11 +111,21 @@ Observation Perception::observe(int frame, bool compare_masks) const {
 void Perception::shape(const std::vector<cv::Mat>& given, Observation& obs) const {
   using Clock = std::chrono::steady_clock;
   auto t = Clock::now();
-  std::vector<cv::Mat> covered;
+  std::vector<cv::Mat> covered, own;
   if (!obs.cover.empty()) {
     for (size_t c = 0; c < given.size(); ++c) covered.push_back(given[c] | obs.cover[c]);
   }
-  const std::vector<cv::Mat>& silhouettes = covered.empty() ? given : covered;
+  if (!obs.abstains.empty()) {
+    // An abstaining camera's silhouette, with or without the cover, is the whole image.
+    own = given;
+    for (size_t c = 0; c < given.size(); ++c) {
+      if (!obs.abstains[c]) continue;
+      own[c] = cv::Mat(given[c].size(), CV_8UC1, cv::Scalar(255));
+      if (!covered.empty()) covered[c] = own[c];
+    }
+  }
+  const std::vector<cv::Mat>& sources = own.empty() ? given : own;
+  const std::vector<cv::Mat>& silhouettes = covered.empty() ? sources : covered;
   obs.views.clear();
   if (options_.views) {
     for (size_t c = 0; c < silhouettes.size(); ++c) {
@@ -133,9 +144,9 @@ void Perception::shape(const std::vector<cv::Mat>& given, Observation& obs) cons
   if (covered.empty()) {
     obs.centerline = centerline(obs.hull, options_.skeleton);
   } else {
-    Occupancy own;
-    hull_.carve(given, own);
-    obs.centerline = centerline(own, options_.skeleton);
+    Occupancy own_hull;
+    hull_.carve(sources, own_hull);
+    obs.centerline = centerline(own_hull, options_.skeleton);
   }
   obs.points.clear();
   obs.points.reserve(obs.centerline.size());
@@ -163,6 +174,43 @@ GateResult Perception::isolate(Observation& obs, const PlacedSurface& body,
   });
   shape(obs.silhouettes, obs);
   return result;
+}
+
+void Perception::point_at_person(Observation& obs, int reach_px) const {
+  const size_t nc = obs.silhouettes.size();
+  obs.cover.resize(nc);
+  const cv::Mat reach =
+      cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * reach_px + 1, 2 * reach_px + 1});
+  for (size_t c = 0; c < nc; ++c) {
+    cv::Mat near;
+    cv::dilate(dataset_->mask(static_cast<int>(c), obs.frame), near, reach);
+    cv::Mat& silhouette = obs.silhouettes[c];
+    const cv::Mat others = silhouette & ~near;
+    obs.cover[c] = obs.cover[c].empty() ? others : (obs.cover[c] | others);
+    silhouette &= near;
+  }
+  std::erase_if(obs.rays, [&](const SilhouetteRay& r) {
+    return !obs.silhouettes[r.camera].at<std::uint8_t>(r.v, r.u);
+  });
+  shape(obs.silhouettes, obs);
+}
+
+int Perception::abstain_until_seen(Observation& obs) const {
+  const int nc = static_cast<int>(obs.silhouettes.size());
+  std::vector<int> order(nc);
+  std::iota(order.begin(), order.end(), 0);
+  std::vector<int> pixels(nc);
+  for (int c = 0; c < nc; ++c) pixels[c] = cv::countNonZero(obs.silhouettes[c]);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return pixels[a] < pixels[b]; });
+  int abstained = 0;
+  for (int c : order) {
+    if (obs.hull.count > 0 || nc - abstained <= 2) break;
+    obs.abstains.resize(nc, false);
+    obs.abstains[c] = true;
+    ++abstained;
+    shape(obs.silhouettes, obs);
+  }
+  return abstained;
 }
 
 std::vector<SilhouetteRay> Perception::rays_apart(const Observation& obs,

@@ -47,6 +47,9 @@ struct Observation {
   // Some camera's silhouette was widened where the scene blocks its view of the person
   // (Perception::widen): there the silhouettes do not show the whole person.
   bool widened = false;
+  // Per camera when any abstains (Perception::abstain_until_seen): it carves nothing and its
+  // views hold the whole image.
+  std::vector<bool> abstains;
   GateResult gate;                     // what isolate() kept
   std::vector<double> silhouette_iou;  // per camera vs the dataset's masks, when asked for
   double silhouettes_ms = 0, hull_ms = 0, centerline_ms = 0;
@@ -71,6 +74,16 @@ class Perception {
   GateResult isolate(Observation& obs, const PlacedSurface& body,
                      std::vector<cv::Mat>* dropped = nullptr,
                      const std::vector<Eigen::Vector3d>* others_before = nullptr) const;
+  // For --init auto with others in view and silhouettes that show everyone: the dataset's mask
+  // of the person to track (Dataset::mask) points at them, as a user would point at whom to
+  // track. Silhouette pixels within `reach_px` of it stay the person's; the others go to the
+  // cover (someone who may hide the person). Hull, centerline and views are made again.
+  void point_at_person(Observation& obs, int reach_px) const;
+  // A camera in whose silhouette the whole person is hidden (behind the scene, before any
+  // occluder is learned) carves the hull away; when the hull is empty, the carving cameras
+  // whose silhouettes hold the fewest pixels abstain one by one (Observation::abstains) until it is
+  // not, keeping at least two. Returns how many abstained.
+  int abstain_until_seen(Observation& obs) const;
   // The rays of `obs` from the cameras in which none of the `dropped` pixels touches what is
   // kept (there, the person's silhouette may hold someone else in front): for learning the
   // person's colours. All rays when every camera has someone touching the person.

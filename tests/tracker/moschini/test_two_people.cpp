@@ -169,5 +169,27 @@ TEST(TwoPeople, BackgroundSubtractionKeepsTheTrackOnItsActorThroughTheCrossing) 
   EXPECT_GT(mean_error_mm(other, track), 2 * mean_error_mm(own, track));
 }
 
+// --init auto with background subtraction: the hull holds both people and the phantom volume
+// between them; the named actor's mask points at whom to start on (before, both starts stood
+// between the two, 0.6 m from either).
+TEST(TwoPeople, AutoStartWithBackgroundSubtractionStartsOnTheNamedActor) {
+  for (const std::string actor : {"actor0", "actor1"}) {
+    TempDir dir;
+    std::string log;
+    ASSERT_EQ(run_simcap("track " + approach().string() + " -o " + (dir / "t").string() +
+                             " --silhouettes bgsub --init auto --actor " + actor + " --quiet",
+                         &log),
+              0)
+        << log;
+    const JointTrack track = read_joint_track(dir / "t" / "joints3d.csv");
+    const JointTrack own = tracker::Dataset(approach(), actor).ground_truth("test");
+    const JointTrack other =
+        tracker::Dataset(approach(), actor == "actor0" ? "actor1" : "actor0").ground_truth("test");
+    const Eigen::Vector3d& r = track.positions[0][track.joint_index("humanoid_root")];
+    EXPECT_LT((r - own.positions[0][own.joint_index("humanoid_root")]).norm(), 0.2) << actor;
+    EXPECT_GT((r - other.positions[0][other.joint_index("humanoid_root")]).norm(), 0.8) << actor;
+  }
+}
+
 }  // namespace
 }  // namespace simcap
