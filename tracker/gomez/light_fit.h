@@ -34,15 +34,17 @@ std::vector<ShadedPixel> shaded_pixels(const BodyShape& shape,
 struct LightFit {
   Lighting lighting;
   double rms_grey = 0;  // the fit's residual per pixel
-  int pixels = 0;
+  int pixels = 0;       // that it kept
 };
 
 // The direction (of `directions` spread evenly over the hemisphere about `up`, camera
 // coordinates) and each class's grey = albedo max(0, n . l) + offset that minimise the squared
 // grey residual over `pixels`. The light is taken from above: shading alone cannot tell a light
 // from the one turned half a turn about the camera's axis once the bones may be flipped (turned
-// so, a bone is its own depth flip). A class whose slope comes out negative is held flat.
-// No pixels: an unknown lighting.
+// so, a bone is its own depth flip). A class whose slope comes out negative is held flat; a
+// direction that needs a negative offset or a class brighter than 255 is not taken. The fit is
+// made twice, the second time without the pixels the first misses by more than twice its rms.
+// No pixels (or no admissible direction): an unknown lighting.
 LightFit fit_light(const std::vector<ShadedPixel>& pixels, const Eigen::Vector3d& up,
                    int directions = 3000);
 
