@@ -12,7 +12,7 @@ namespace simcap::cli {
 namespace {
 
 // Sweep keys and the options they set (sweep files name the voxel and noise with their unit).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 33> kSweepKeys{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 34> kSweepKeys{{
     {"method", "--method"},
     {"actor", "--actor"},
     {"silhouettes", "--silhouettes"},
@@ -40,6 +40,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 33> kSweepKe
     {"mirror_groups", "--mirror-groups"},
     {"hand_depths", "--hand-depths"},
     {"depth_groups", "--depth-groups"},
+    {"shading_sigma", "--shading-sigma"},
     {"floor", "--floor"},
     {"smooth", "--smooth"},
     {"cutoff_hz", "--cutoff"},
@@ -269,6 +270,14 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
                   "tested slid in depth to meet the silhouette's feet and top rows (full body), "
                   "0: off")
       ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  cmd->add_option("--shading-sigma", m.score.sigma_shade_grey,
+                  "monocular: spread in grey levels of the arm bones' shading term, 0: off. Each "
+                  "upper arm's and forearm's mean grey against a Lambert cylinder's under a "
+                  "directional light, penalised where its depth flip explains it better; the "
+                  "light and each colour class's grey are fitted on the first frame with the "
+                  "start pose (--init gt: the truth's; auto: the upright start)")
+      ->check(CLI::Range(0.0, 255.0))
       ->capture_default_str();
   TriangulateOptions& t = o.triangulate;
   cmd->add_option("--detections", t.detections,

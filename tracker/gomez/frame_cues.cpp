@@ -56,6 +56,10 @@ FrameCues make_cues(const Camera& camera, const cv::Mat& image, const cv::Mat& s
 
   cv::Mat grey, edges, band;
   cv::cvtColor(cues.small, grey, cv::COLOR_BGR2GRAY);
+  cues.grey.resize(static_cast<size_t>(W) * H);
+  for (int v = 0; v < H; ++v) {
+    std::copy_n(grey.ptr<std::uint8_t>(v), W, cues.grey.begin() + static_cast<size_t>(v) * W);
+  }
   cv::Canny(grey, edges, options.canny_low, options.canny_high, 3, true);
   const int b = std::max(0, options.edge_band_px);
   cv::dilate(inside, band, cv::getStructuringElement(cv::MORPH_ELLIPSE, {2 * b + 1, 2 * b + 1}));

@@ -32,7 +32,8 @@ struct FrameCues {
   std::vector<std::uint8_t> cls;  // colour class per working pixel; 0: background, no class
   std::array<int, kMaxColourClasses + 1> class_area{};  // pixels per class
   std::vector<float> distance;                          // to the nearest image edge, working pixels
-  float far = 0;  // the largest distance (no edge at all: width + height)
+  std::vector<std::uint8_t> grey;  // the crop's grey at working resolution (the shading cue)
+  float far = 0;                   // the largest distance (no edge at all: width + height)
   // The silhouette's lowest extent (full-resolution pixel coordinates, the bottom edge of its
   // lowest row): where the feet stand. NaN when the silhouette is empty or touches the image's
   // bottom (the feet are cut off).

@@ -157,7 +157,7 @@ TrackSummary track_monocular(const fs::path& dataset_path, const fs::path& out,
                 "cues_ms,search_ms"
              << (options.oracle ? ",truth_region,truth_edge_px,truth_feet_px" : "") << "\n";
   std::optional<Skeleton> skeleton;
-  std::string body_csv, classes_csv;
+  std::string body_csv, classes_csv, shading_csv;
   const TrackSummary summary = run_monocular(
       dataset, options, options.max_frames,
       [&](int frame, const TrackedFrame& t, const MonocularTracker& tracker) {
@@ -188,6 +188,20 @@ TrackSummary track_monocular(const fs::path& dataset_path, const fs::path& out,
             c << '\n';
           }
           classes_csv = c.str();
+        }
+        const LightFit& light = tracker.light_fit();
+        if (shading_csv.empty() && light.lighting.known()) {
+          // The light in world coordinates (towards it) and each class's grey line.
+          const Eigen::Vector3d l = tracker.camera().R.transpose() * light.lighting.to_light;
+          std::ostringstream c;
+          c << "frame,light_x,light_y,light_z,rms_grey,pixels,class,albedo,offset\n";
+          for (int k = 1; k <= kMaxColourClasses; ++k) {
+            if (light.lighting.albedo[k] == 0 && light.lighting.offset[k] == 0) continue;
+            c << frame << ',' << l.x() << ',' << l.y() << ',' << l.z() << ',' << light.rms_grey
+              << ',' << light.pixels << ',' << k << ',' << light.lighting.albedo[k] << ','
+              << light.lighting.offset[k] << '\n';
+          }
+          shading_csv = c.str();
         }
         const Pose pose = body.dofs.pose(t.output);
         const auto world = joint_positions(body.skeleton, pose);
@@ -234,6 +248,7 @@ TrackSummary track_monocular(const fs::path& dataset_path, const fs::path& out,
   write_text_atomic(out / "diagnostics" / "frames.csv", frames_csv.str());
   write_text_atomic(out / "diagnostics" / "body.csv", body_csv);
   write_text_atomic(out / "diagnostics" / "colour_classes.csv", classes_csv);
+  if (!shading_csv.empty()) write_text_atomic(out / "diagnostics" / "shading.csv", shading_csv);
   TrackSummary s = summary;
   s.track = out;
   return s;

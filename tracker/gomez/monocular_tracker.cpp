@@ -15,18 +15,60 @@ double ms_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
 }
 
+// The body posed at `x` rendered at full resolution in a crop around it and the silhouette: what
+// the first frame's colours and light are learned on.
+struct FullRender {
+  std::vector<Eigen::Isometry3d> world;
+  View view;
+  LabelImage cells;
+};
+
+FullRender render_full(const Body& body, const State& x, const Camera& camera, const cv::Mat& image,
+                       const cv::Mat& silhouette) {
+  FullRender r;
+  r.world = forward_kinematics(body.skeleton, body.dofs.pose(x));
+  const cv::Rect box = (body_box(body.shape, r.world, camera) | mask_box(silhouette)) &
+                       cv::Rect(0, 0, image.cols, image.rows);
+  r.view = {&camera, box.x, box.y, 1, box.width, box.height};
+  render_labels(body.shape, r.world, r.view, r.cells);
+  return r;
+}
+
 }  // namespace
 
 ColourClasses learn_colours(const Body& body, const State& x, const Camera& camera,
                             const cv::Mat& image, const cv::Mat& silhouette,
                             const ColourOptions& options) {
+  const FullRender r = render_full(body, x, camera, image, silhouette);
+  return ColourClasses(image, silhouette, r.cells, r.view, body.shape, options);
+}
+
+LightFit fit_start_light(const Body& body, const State& x, const Camera& camera,
+                         const cv::Mat& image, const cv::Mat& silhouette,
+                         const std::vector<std::uint8_t>& cell_class) {
+  const FullRender r = render_full(body, x, camera, image, silhouette);
+  return fit_light(
+      shaded_pixels(body.shape, r.world, r.view, r.cells, image, silhouette, cell_class),
+      camera.R * Eigen::Vector3d::UnitY());
+}
+
+Lighting settle_offsets(const BoneShading& shading, const Body& body, const State& x,
+                        const FrameCues& cues, const Lighting& lighting) {
   const auto world = forward_kinematics(body.skeleton, body.dofs.pose(x));
-  const cv::Rect box = (body_box(body.shape, world, camera) | mask_box(silhouette)) &
-                       cv::Rect(0, 0, image.cols, image.rows);
-  const View view{&camera, box.x, box.y, 1, box.width, box.height};
-  LabelImage cells;
-  render_labels(body.shape, world, view, cells);
-  return ColourClasses(image, silhouette, cells, view, body.shape, options);
+  LabelImage labels;
+  render_labels(body.shape, world, cues.view, labels);
+  std::array<double, kMaxColourClasses + 1> sum{};
+  std::array<int, kMaxColourClasses + 1> count{};
+  for (const BoneSample& b : shading.observe(labels, world, cues)) {
+    if (b.pixels < BoneShading::kMinPixels) continue;
+    sum[b.cls] += b.grey - predicted_grey(b, lighting);
+    ++count[b.cls];
+  }
+  Lighting out = lighting;
+  for (int c = 0; c <= kMaxColourClasses; ++c) {
+    if (count[c]) out.offset[c] += sum[c] / count[c];
+  }
+  return out;
 }
 
 MonocularTracker::MonocularTracker(std::unique_ptr<Body> body, const State& x0,
@@ -36,6 +78,10 @@ MonocularTracker::MonocularTracker(std::unique_ptr<Body> body, const State& x0,
   classes_ = learn_colours(*body_, x0, camera, image, silhouette, options.colours);
   scorer_ =
       std::make_unique<PoseScorer>(body_->dofs, body_->shape, classes_.cell_class(), options.score);
+  if (options.score.sigma_shade_grey > 0 && scorer_->shading().available()) {
+    light_fit_ = fit_start_light(*body_, x0, camera, image, silhouette, classes_.cell_class());
+    scorer_->set_lighting(light_fit_.lighting);
+  }
   filter_ = std::make_unique<ParticleFilter>(*scorer_, &body_->arms, options.filter);
 }
 
@@ -58,6 +104,11 @@ TrackedFrame MonocularTracker::track(const cv::Mat& image, const cv::Mat& silhou
   t = std::chrono::steady_clock::now();
   if (!started_) {
     started_ = true;
+    if (scorer_->lighting().known()) {
+      light_fit_.lighting =
+          settle_offsets(scorer_->shading(), *body_, x0_, cues, light_fit_.lighting);
+      scorer_->set_lighting(light_fit_.lighting);
+    }
     out.estimate = x0_;
     out.score = scorer_->score(x0_, cues);
     out.evaluations = 1;

@@ -11,6 +11,7 @@
 #include "tracker/gomez/body.h"
 #include "tracker/gomez/colour_classes.h"
 #include "tracker/gomez/frame_cues.h"
+#include "tracker/gomez/light_fit.h"
 #include "tracker/gomez/particle_filter.h"
 #include "tracker/gomez/registration.h"
 
@@ -67,6 +68,9 @@ class MonocularTracker {
   const ColourClasses& classes() const { return classes_; }
   const PoseScorer& scorer() const { return *scorer_; }
   const FrameCues& last_cues() const { return previous_; }
+  const Camera& camera() const { return *camera_; }
+  // The shading's light, fitted on the first frame (LightFit::pixels 0: none).
+  const LightFit& light_fit() const { return light_fit_; }
 
  private:
   std::unique_ptr<Body> body_;
@@ -78,7 +82,20 @@ class MonocularTracker {
   State x0_, estimate_, output_;
   FrameCues previous_;
   bool started_ = false;
+  LightFit light_fit_;
 };
+
+// The shading's light fitted on one frame with `body` posed at `x` (full resolution, a crop
+// around the body and the silhouette): the start pose, known (--init gt) or assumed (--init auto).
+LightFit fit_start_light(const Body& body, const State& x, const Camera& camera,
+                         const cv::Mat& image, const cv::Mat& silhouette,
+                         const std::vector<std::uint8_t>& cell_class);
+
+// `lighting` with each class's offset moved so that the arm bones of `body` posed at `x` show
+// on average the grey it predicts for them in `cues` (their working-resolution means, which the
+// shading term compares, not the full-resolution pixels the light was fitted to).
+Lighting settle_offsets(const BoneShading& shading, const Body& body, const State& x,
+                        const FrameCues& cues, const Lighting& lighting);
 
 // Learns the colour classes of `body` posed at `x` on one frame (full resolution, a crop around
 // the body and the silhouette).

@@ -15,7 +15,8 @@ Energy energy(const Score& score, const ScoreOptions& options) {
   const double f = score.region / options.sigma_region, d = score.edge / options.sigma_edge_px;
   const double e = options.sigma_feet_px > 0 ? score.feet / options.sigma_feet_px : 0.0;
   const double t = options.sigma_top_px > 0 ? score.top / options.sigma_top_px : 0.0;
-  return {0.5 * f * f, 0.5 * d * d, 0.5 * (e * e + t * t)};
+  const double g = options.sigma_shade_grey;
+  return {0.5 * f * f, 0.5 * d * d, 0.5 * (e * e + t * t), g > 0 ? 0.5 * score.shade / (g * g) : 0};
 }
 
 RegionModel region_model(const BodyShape& shape, const std::vector<std::uint8_t>& cell_class,
@@ -132,7 +133,8 @@ PoseScorer::PoseScorer(const BodyDofs& dofs, const BodyShape& shape,
     : dofs_(&dofs),
       shape_(&shape),
       options_(options),
-      region_(region_model(shape, cell_class, options.split_head)) {}
+      region_(region_model(shape, cell_class, options.split_head)),
+      shading_(shape, dofs.skeleton(), cell_class) {}
 
 void PoseScorer::render(const State& x, const View& view, LabelImage& out) const {
   render_labels(*shape_, forward_kinematics(dofs_->skeleton(), dofs_->pose(x)), view, out);
@@ -158,6 +160,9 @@ Score PoseScorer::score(const State& x, const FrameCues& cues) const {
     const Eigen::AlignedBox2d box = body_extent(*shape_, world, *cues.view.camera);
     s.feet = feet_offset(box.isEmpty() ? NAN : box.max().y(), cues);
     s.top = top_offset(box.isEmpty() ? NAN : box.min().y(), cues);
+  }
+  if (options_.sigma_shade_grey > 0 && lighting_.known()) {
+    s.shade = flip_penalty(shading_.observe(labels, world, cues), lighting_);
   }
   return s;
 }

@@ -10,6 +10,7 @@
 #include "core/name_table.h"
 #include "tracker/gomez/body_dofs.h"
 #include "tracker/gomez/body_shape.h"
+#include "tracker/gomez/bone_shading.h"
 #include "tracker/gomez/frame_cues.h"
 #include "tracker/gomez/label_renderer.h"
 
@@ -45,6 +46,11 @@ struct ScoreOptions {
   // The same for the top of the body against the silhouette's top (the body's known height
   // against a crouch it does not get up from); 0 is off.
   double sigma_top_px = 3.0;
+  // The arm bones' shading (simcap's addition, bone_shading.h): the spread in grey levels of
+  // each bone's observed grey about the grey its posed direction predicts under the light fitted
+  // on the first frame, counted where its depth flip predicts it better (flip_penalty); 0 is
+  // off. Tells an arm bone from its depth flip, which the other costs see alike.
+  double sigma_shade_grey = 0.0;
 };
 
 struct Score {
@@ -52,16 +58,20 @@ struct Score {
   double edge = 0.0;    // D_C, working pixels
   double feet = 0.0;    // model's lowest extent minus the silhouette's, working pixels (0: none)
   double top = 0.0;     // model's highest extent minus the silhouette's, working pixels (0: none)
+  double shade = 0.0;   // the arm bones' flip_penalty, grey levels squared (0: none)
 };
 
-// F^2 / 2 sf^2, D^2 / 2 sd^2 and the feet prior's E^2 / 2 se^2: the negative log-likelihood's
-// terms.
+// F^2 / 2 sf^2, D^2 / 2 sd^2, the feet and top priors' E^2 / 2 se^2 and the shading's
+// residual / 2 sg^2: the negative log-likelihood's terms.
 struct Energy {
-  double region = 0, edge = 0, feet = 0;
-  double total() const { return region + edge + feet; }
-  // The two terms Nelder-Mead weighs (regions first, then edges): the feet prior goes half to
-  // each, so that it counts in both steps and their sum is the total.
-  Eigen::Vector2d terms() const { return {region + 0.5 * feet, edge + 0.5 * feet}; }
+  double region = 0, edge = 0, feet = 0, shade = 0;
+  double total() const { return region + edge + feet + shade; }
+  // The two terms Nelder-Mead weighs (regions first, then edges): the priors and the shading go
+  // half to each, so that they count in both steps and their sum is the total.
+  Eigen::Vector2d terms() const {
+    const double both = 0.5 * (feet + shade);
+    return {region + both, edge + both};
+  }
 };
 Energy energy(const Score& score, const ScoreOptions& options);
 
@@ -105,6 +115,11 @@ class PoseScorer {
   const BodyDofs& dofs() const { return *dofs_; }
   const BodyShape& shape() const { return *shape_; }
   const std::vector<std::uint8_t>& cell_class() const { return region_.cell_class; }
+  const BoneShading& shading() const { return shading_; }
+  // The light the shading term compares with (fitted on the first frame); not called while a
+  // frame is scored. The term is off until the lighting is known.
+  void set_lighting(const Lighting& lighting) { lighting_ = lighting; }
+  const Lighting& lighting() const { return lighting_; }
 
   void render(const State& x, const View& view, LabelImage& out) const;
   // Renders into a per-thread buffer and scores; safe to call from several threads.
@@ -118,6 +133,8 @@ class PoseScorer {
   const BodyShape* shape_;
   ScoreOptions options_;
   RegionModel region_;
+  BoneShading shading_;
+  Lighting lighting_;
 };
 
 }  // namespace simcap::tracker::gomez
