@@ -268,23 +268,36 @@ TEST(TrackJob, SubtractedSilhouettesAreScoredAgainstTheMasks) {
   EXPECT_LT(mpjpe_mm(dataset() / "gt" / "joints3d.csv", out / "t" / "joints3d.csv"), 60.0);
 }
 
-// Renders the first `frames` frames of a procedural action (scenes/README.md) at the centre of
-// studio4 and tracks them with --init auto: the track's MPJPE in mm.
+// `simcap render ARGS` into out/d, then `simcap track --init auto` of it into out/t; false (with
+// the failure reported) when either fails.
+bool render_and_track_auto(const fs::path& out, const std::string& render_args) {
+  std::string log;
+  if (run_simcap("render " + render_args + " -o " + (out / "d").string() + " --quiet", &log) != 0) {
+    ADD_FAILURE() << log;
+    return false;
+  }
+  if (run_simcap(
+          "track " + (out / "d").string() + " -o " + (out / "t").string() + " --init auto --quiet",
+          &log) != 0) {
+    ADD_FAILURE() << log;
+    return false;
+  }
+  return true;
+}
+
+// The first `frames` frames of a procedural action (scenes/README.md) at the centre of studio4,
+// rendered and tracked with --init auto into `out`.
+bool render_and_track_action(const fs::path& out, const std::string& motion, int frames) {
+  return render_and_track_auto(out, SIMCAP_SOURCE_DIR "/scenes/studio4.yaml --frames " +
+                                        std::to_string(frames) +
+                                        " --set 'actors[0].motion={procedural: " + motion +
+                                        "}' --set 'actors[0].offset=[0,0,0]'");
+}
+
+// The track's MPJPE in mm on such an action.
 double auto_start_mpjpe_mm(const std::string& motion, int frames) {
   TempDir out;
-  std::string log;
-  EXPECT_EQ(run_simcap("render " SIMCAP_SOURCE_DIR "/scenes/studio4.yaml -o " +
-                           (out / "d").string() + " --quiet --frames " + std::to_string(frames) +
-                           " --set 'actors[0].motion={procedural: " + motion +
-                           "}' --set 'actors[0].offset=[0,0,0]'",
-                       &log),
-            0)
-      << log;
-  EXPECT_EQ(run_simcap("track " + (out / "d").string() + " -o " + (out / "t").string() +
-                           " --init auto --quiet",
-                       &log),
-            0)
-      << log;
+  if (!render_and_track_action(out.path(), motion, frames)) return 1e9;
   return mpjpe_mm(out / "d" / "gt" / "joints3d.csv", out / "t" / "joints3d.csv");
 }
 
@@ -310,19 +323,7 @@ TEST(TrackJob, AutoInitializationFindsTheHeadingWithTheArmsCrossed) {
 // arms stayed 1.9% short here). Every stick within 1% of the truth's.
 TEST(TrackJob, AutoInitializationScalesTheBodyToStandOnTheFloor) {
   TempDir out;
-  std::string log;
-  ASSERT_EQ(
-      run_simcap("render " SIMCAP_SOURCE_DIR "/scenes/studio4.yaml -o " + (out / "d").string() +
-                     " --quiet --frames 6 --set 'actors[0].motion={procedural: squat, "
-                     "duration: 4, count: 3}' --set 'actors[0].offset=[0,0,0]'",
-                 &log),
-      0)
-      << log;
-  ASSERT_EQ(run_simcap("track " + (out / "d").string() + " -o " + (out / "t").string() +
-                           " --init auto --quiet",
-                       &log),
-            0)
-      << log;
+  ASSERT_TRUE(render_and_track_action(out.path(), "squat, duration: 4, count: 3", 6));
   const JointTrack gt = read_joint_track(out / "d" / "gt" / "joints3d.csv");
   auto at = [&](const std::string& joint) { return gt.positions[0][gt.joint_index(joint)]; };
   auto apart = [&](const std::string& a, const std::string& b) { return (at(a) - at(b)).norm(); };
@@ -348,17 +349,8 @@ TEST(TrackJob, AutoInitializationScalesTheBodyToStandOnTheFloor) {
 // someone; then the start pose teaches the occlusion map that pillar, as --init gt's does.
 TEST(TrackJob, AutoInitializationStartsWhenOneCameraSeesNoneOfThePerson) {
   TempDir out;
-  std::string log;
-  ASSERT_EQ(run_simcap("render " SIMCAP_SOURCE_DIR "/scenes/occluders.yaml -o " +
-                           (out / "d").string() + " --quiet --frames 5",
-                       &log),
-            0)
-      << log;
-  ASSERT_EQ(run_simcap("track " + (out / "d").string() + " -o " + (out / "t").string() +
-                           " --init auto --quiet",
-                       &log),
-            0)
-      << log;
+  ASSERT_TRUE(
+      render_and_track_auto(out.path(), SIMCAP_SOURCE_DIR "/scenes/occluders.yaml --frames 5"));
   const JointTrack gt = read_joint_track(out / "d" / "gt" / "joints3d.csv");
   const JointTrack track = read_joint_track(out / "t" / "joints3d.csv");
   ASSERT_EQ(track.frames.size(), 5u);
