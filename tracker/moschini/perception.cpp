@@ -108,6 +108,12 @@ Observation Perception::observe(int frame, bool compare_masks) const {
   return obs;
 }
 
+void Perception::keep_rays_in_silhouettes(Observation& obs) {
+  std::erase_if(obs.rays, [&](const SilhouetteRay& r) {
+    return !obs.silhouettes[r.camera].at<std::uint8_t>(r.v, r.u);
+  });
+}
+
 void Perception::shape(const std::vector<cv::Mat>& given, Observation& obs) const {
   using Clock = std::chrono::steady_clock;
   auto t = Clock::now();
@@ -169,9 +175,7 @@ GateResult Perception::isolate(Observation& obs, const PlacedSurface& body,
     for (size_t c = 0; c < before.size(); ++c) dropped->push_back(before[c] & ~obs.silhouettes[c]);
   }
   if (!result.changed) return result;
-  std::erase_if(obs.rays, [&](const SilhouetteRay& r) {
-    return !obs.silhouettes[r.camera].at<std::uint8_t>(r.v, r.u);
-  });
+  keep_rays_in_silhouettes(obs);
   shape(obs.silhouettes, obs);
   return result;
 }
@@ -189,13 +193,11 @@ void Perception::point_at_person(Observation& obs, int reach_px) const {
     obs.cover[c] = obs.cover[c].empty() ? others : (obs.cover[c] | others);
     silhouette &= near;
   }
-  std::erase_if(obs.rays, [&](const SilhouetteRay& r) {
-    return !obs.silhouettes[r.camera].at<std::uint8_t>(r.v, r.u);
-  });
+  keep_rays_in_silhouettes(obs);
   shape(obs.silhouettes, obs);
 }
 
-int Perception::abstain_until_seen(Observation& obs) const {
+void Perception::abstain_until_seen(Observation& obs) const {
   const int nc = static_cast<int>(obs.silhouettes.size());
   std::vector<int> order(nc);
   std::iota(order.begin(), order.end(), 0);
@@ -210,7 +212,6 @@ int Perception::abstain_until_seen(Observation& obs) const {
     ++abstained;
     shape(obs.silhouettes, obs);
   }
-  return abstained;
 }
 
 std::vector<SilhouetteRay> Perception::rays_apart(const Observation& obs,

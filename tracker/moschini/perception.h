@@ -81,9 +81,9 @@ class Perception {
   void point_at_person(Observation& obs, int reach_px) const;
   // A camera in whose silhouette the whole person is hidden (behind the scene, before any
   // occluder is learned) carves the hull away; when the hull is empty, the carving cameras
-  // whose silhouettes hold the fewest pixels abstain one by one (Observation::abstains) until it is
-  // not, keeping at least two. Returns how many abstained.
-  int abstain_until_seen(Observation& obs) const;
+  // whose silhouettes hold the fewest pixels abstain one by one (Observation::abstains) until
+  // it is not, keeping at least two.
+  void abstain_until_seen(Observation& obs) const;
   // The rays of `obs` from the cameras in which none of the `dropped` pixels touches what is
   // kept (there, the person's silhouette may hold someone else in front): for learning the
   // person's colours. All rays when every camera has someone touching the person.
@@ -99,6 +99,8 @@ class Perception {
   // Moves the pixels of `silhouette` in colours the person does not wear (AppearanceModel::
   // foreign) to the returned mask; those in colours the person alone wears go to `distinct`.
   cv::Mat foreign_pixels(cv::Mat& silhouette, const cv::Mat& colour, cv::Mat& distinct) const;
+  // Drops the rays whose pixel the silhouettes no longer hold.
+  static void keep_rays_in_silhouettes(Observation& obs);
   // Views, hull and centerline of `silhouettes` (with obs.cover), timed into `obs`.
   void shape(const std::vector<cv::Mat>& silhouettes, Observation& obs) const;
   const Dataset* dataset_;
