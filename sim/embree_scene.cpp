@@ -64,7 +64,10 @@ EmbreeScene::EmbreeScene(BodyBvhUpdate body_update, int time_steps, int still_st
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw Error("Embree: cannot create a device");
   scene_ = new_dynamic_scene(device_);
-  casters_ = new_dynamic_scene(device_);
+  // Embree builds a geometry's BVH once per scene it is attached to: a casters' copy of a
+  // motion-blur scene would build the bodies' motion-blur BVHs, the costliest part of a blurred
+  // frame, twice; its shadow rays trace the whole scene instead (casters_of()).
+  if (time_steps == 1) casters_ = new_dynamic_scene(device_);
   if (still_step >= 0) {
     still_scene_ = new_dynamic_scene(device_);
     still_casters_ = new_dynamic_scene(device_);
@@ -87,7 +90,7 @@ EmbreeScene::~EmbreeScene() {
   }
   if (still_scene_) rtcReleaseScene(still_scene_);
   if (still_casters_) rtcReleaseScene(still_casters_);
-  rtcReleaseScene(casters_);
+  if (casters_) rtcReleaseScene(casters_);
   rtcReleaseScene(scene_);
   rtcReleaseDevice(device_);
 }
@@ -104,7 +107,7 @@ unsigned EmbreeScene::attach(RTCGeometry geometry, RTCGeometry still, Entry entr
   const unsigned id = rtcAttachGeometry(scene_, geometry);
   if (still_scene_ && still) rtcAttachGeometryByID(still_scene_, still, id);
   if (casts_shadows) {
-    rtcAttachGeometryByID(casters_, geometry, id);
+    if (casters_) rtcAttachGeometryByID(casters_, geometry, id);
     if (still_casters_ && still) rtcAttachGeometryByID(still_casters_, still, id);
   }
   if (entries_.size() <= id) entries_.resize(id + 1);

@@ -109,8 +109,10 @@ class EmbreeScene {
   // What shadow rays trace where camera rays trace `scene` (scene_at's or scene_for's answer):
   // the same geometry ids but only the shadow casters (actors and occluders), so that shadow rays
   // never traverse the room's surfaces, which their mask would reject at every triangle anyway.
+  // A motion-blur scene has no casters' copy: its shadow rays trace the scene itself.
   RTCScene casters_of(RTCScene scene) const {
-    return scene == still_scene_ ? still_casters_ : casters_;
+    if (scene == still_scene_) return still_casters_;
+    return casters_ ? casters_ : scene_;
   }
   int actor_count() const { return static_cast<int>(actors_.size()); }
 
@@ -179,7 +181,7 @@ class EmbreeScene {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   RTCScene still_scene_ = nullptr;
-  RTCScene casters_ = nullptr, still_casters_ = nullptr;  // see casters_of()
+  RTCScene casters_ = nullptr, still_casters_ = nullptr;  // see casters_of(); may be null
   BodyBvhUpdate body_update_;
   int time_steps_ = 1;
   int still_step_ = -1;
