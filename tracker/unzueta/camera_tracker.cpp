@@ -110,7 +110,8 @@ void CameraTracker::initialize(const cv::Mat& bgr, const cv::Mat& silhouette,
       t.initialize(previous_, *regions.roi[index_of(e)]);
       ++started;
     } catch (const Error&) {
-      // A part whose ROI shows none of its colour starts lost; CFOF recovers it when it shows.
+      // A part whose ROI shows none of its colour starts lost; CFOF recovers it when it shows,
+      // unless its ROI showed none of the person either: it has no colours and stays lost.
     }
   }
   if (started == 0) throw Error("CFOF: no body part could start in this camera");

@@ -265,6 +265,11 @@ void CfofTracker::track(const CfofFrame& previous, const CfofFrame& current, boo
     return;
   }
   const bool resume = state_ != CfofState::tracking || features_.empty();
+  // A part that never showed its colours (hidden in its first view) has none to be found by.
+  if (resume && !colour_.learned()) {
+    coast(hidden_state, carry);
+    return;
+  }
   if (resume) {
     // Alg. 2 lines 2-5: search again once the ROI (where it is expected) shows enough colour.
     const cv::Point2d expected =

@@ -161,10 +161,12 @@ class Pipeline {
       for (size_t i = 0; i < cameras_.size(); ++i) {
         const fs::path labels =
             ds_.root() / camera(cameras_[i]).name / "parts" / frame_name(f, "png");
-        const cv::Mat l = decode_png(labels, cv::IMREAD_UNCHANGED);
+        cv::Mat l = decode_png(labels, cv::IMREAD_UNCHANGED);
         if (l.empty())
           throw Error(labels.string() +
                       ": missing or unreadable (--init gt reads the part labels)");
+        // The labels name joints, not people: with several actors every head is a skullbase.
+        l.setTo(0, ds_.mask(cameras_[i], f) == 0);
         regions[i] = labelled_part_regions(l, ds_.root() / "parts.json");
       }
     } else {

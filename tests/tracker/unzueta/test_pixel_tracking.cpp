@@ -12,6 +12,7 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "core/error.h"
 #include "tracker/common/triangulation.h"
 #include "tracker/unzueta/cfof.h"
 #include "tracker/unzueta/depth_lookup.h"
@@ -225,6 +226,33 @@ TEST(Cfof, HiddenPartCarriedWithTheBodyResumesOnIt) {
     } else {
       EXPECT_GT(std::hypot(err.x, err.y), 40.0);
     }
+  }
+}
+
+// A part whose first region holds none of the person's silhouette (another person's head, where
+// the part labels of two actors met) learns no colours: it fails to start, then stays lost
+// while the person moves through its region, without asking the colour model anything.
+TEST(Cfof, APartThatNeverShowedItsColoursStaysLost) {
+  const auto [floor, skin] = textures(7);
+  const CfofParams params;
+  cv::Point2d truth(100, 100);
+  auto frame = [&](cv::Point2d centre) {
+    const cv::Mat bgr = frame_with_disc(centre, floor, skin);
+    cv::Mat mask(bgr.size(), CV_8UC1, cv::Scalar(0));
+    cv::circle(mask, cv::Point(cvRound(centre.x), cvRound(centre.y)), 18, cv::Scalar(255), -1);
+    return CfofFrame::from_bgr(bgr, mask, params);
+  };
+  CfofFrame previous = frame(truth);
+  CfofTracker t(params);
+  EXPECT_THROW(t.initialize(previous, cv::Rect2d(200, 150, 40, 40)), Error);
+  EXPECT_EQ(t.state(), CfofState::lost);
+  for (int f = 1; f <= 10; ++f) {
+    truth += cv::Point2d(10, 5);
+    CfofFrame current = frame(truth);
+    EXPECT_NO_THROW(t.track(previous, current));
+    EXPECT_EQ(t.state(), CfofState::lost) << "frame " << f;
+    EXPECT_FALSE(t.restart(current, truth));
+    previous = std::move(current);
   }
 }
 
