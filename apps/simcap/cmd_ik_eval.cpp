@@ -25,6 +25,7 @@ struct IkEvalArgs {
   bool known_orientations = false;
   bool middle_targets = false;
   std::string swivel = "neutral";
+  std::string spine_bend = "thesis";
   int frames = 0;
 };
 
@@ -61,6 +62,7 @@ IkEvalResult evaluate_solver(const IkEvalArgs& a, const IkClip& clip, const std:
   settings.sik_swivel = a.swivel == "reference"        ? SikSwivel::reference
                         : a.swivel == "least-rotation" ? SikSwivel::least_rotation
                                                        : SikSwivel::neutral;
+  settings.spine_bend = a.spine_bend == "lean" ? SikSpineBend::lean : SikSpineBend::thesis;
   const auto solver = make_ik_solver(method, clip.body, settings);
   const std::vector<int> joints = table10_joints(clip.body);
   const IkEvalResult r =
@@ -95,6 +97,7 @@ IkEvalResult evaluate_solver(const IkEvalArgs& a, const IkClip& clip, const std:
                             {"known_orientations", a.known_orientations},
                             {"middle_targets", a.middle_targets},
                             {"sik_swivel", a.swivel},
+                            {"spine_bend", a.spine_bend},
                             {"position_error", r.position_error},
                             {"orientation_error", r.orientation_error},
                             {"ms_per_frame", r.ms_per_frame}};
@@ -229,6 +232,14 @@ void add_ik_eval(CLI::App& app, Action& action) {
                   "least-rotation (TGBSIK's), reference (KMA's: elbows toward the pelvis' -Y, "
                   "knees toward its +Z)")
       ->check(CLI::IsMember({"neutral", "least-rotation", "reference"}))
+      ->capture_default_str();
+  cmd->add_option("--spine-bend", args.spine_bend,
+                  "sik, tgbsik: how far the spine flexes when the pelvis-head line is shorter than "
+                  "the neutral spine: thesis (all the flexion that length needs, eqs. 8-9), lean "
+                  "(that flexion times the sine of the line's forward lean from the vertical, all "
+                  "of it past the horizontal, none leaning back; the length left is split between "
+                  "pelvis and head; not the thesis')")
+      ->check(CLI::IsMember({"thesis", "lean"}))
       ->capture_default_str();
   cmd->add_option("--frames", args.frames, "Evaluate only the first N frames (default: all)")
       ->check(non_negative_number());

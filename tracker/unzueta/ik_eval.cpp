@@ -99,6 +99,7 @@ std::unique_ptr<IkSolver> make_ik_solver(std::string_view method, const SikBody&
     o.pelvis_weights = settings.pelvis_weights;
     o.limits = settings.limits;
     o.swivel = method == "tgbsik" ? SikSwivel::least_rotation : settings.sik_swivel;
+    o.spine_bend = settings.spine_bend;
     return std::make_unique<SikSolver>(body, o);
   }
   if (method == "ccd" || method == "kma") {

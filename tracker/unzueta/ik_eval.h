@@ -12,6 +12,7 @@
 #include "tracker/unzueta/sik_ik_solver.h"
 #include "tracker/unzueta/sik_limb.h"
 #include "tracker/unzueta/sik_pelvis.h"
+#include "tracker/unzueta/sik_spine.h"
 
 namespace simcap {
 
@@ -46,8 +47,9 @@ IkClip load_ik_clip(const std::filesystem::path& bvh, bool identify_hinges, int 
 struct IkSolverSettings {
   SikPelvisWeights pelvis_weights;
   bool limits = true;
-  double dls_damping = 0.75;                  // metres (see DlsOptions::damping)
-  SikSwivel sik_swivel = SikSwivel::neutral;  // sik's limb swivel (tgbsik: least_rotation)
+  double dls_damping = 0.75;                       // metres (see DlsOptions::damping)
+  SikSwivel sik_swivel = SikSwivel::neutral;       // sik's limb swivel (tgbsik: least_rotation)
+  SikSpineBend spine_bend = SikSpineBend::thesis;  // sik's and tgbsik's
 };
 // The solvers simcap implements: sik, ccd, pinv, dls, dls-svd, sdls, pik, tgbsik, kma.
 const std::vector<std::string>& ik_solver_names();

@@ -7,7 +7,7 @@ SikSolver::SikSolver(SikBody body, SikOptions options)
       body_(std::move(body)),
       limits_(body_),
       pelvis_(options.pelvis_weights),
-      spine_(body_, limits_),
+      spine_(body_, limits_, options.spine_bend),
       limbs_(body_, limits_, nullptr, options.swivel),
       pose_(Pose::neutral(body_.skeleton())) {}
 
@@ -17,7 +17,7 @@ SikSolver::SikSolver(SikBody body, const BodyMesh& mesh, SikOptions options, dou
       limits_(body_),
       collider_(std::in_place, body_, mesh, floor_y),
       pelvis_(options.pelvis_weights),
-      spine_(body_, limits_),
+      spine_(body_, limits_, options.spine_bend),
       limbs_(body_, limits_, &*collider_, options.swivel),
       pose_(Pose::neutral(body_.skeleton())) {}
 

@@ -21,6 +21,7 @@ struct SikOptions {
   // neutral: SIK; least_rotation: the thesis' TGBSIK (SIK's pelvis, spine and clavicles, TGB limbs
   // with the swivel of least shoulder and hip rotation).
   SikSwivel swivel = SikSwivel::neutral;
+  SikSpineBend spine_bend = SikSpineBend::thesis;
 };
 
 class SikSolver final : public IkSolver {

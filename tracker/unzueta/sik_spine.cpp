@@ -21,8 +21,8 @@ constexpr int kStretchPostures = 21;
 
 }  // namespace
 
-SikSpine::SikSpine(const SikBody& body, const SikLimits& limits)
-    : body_(body), limits_(limits), chain_(body.spine()) {
+SikSpine::SikSpine(const SikBody& body, const SikLimits& limits, SikSpineBend bend)
+    : body_(body), limits_(limits), bend_(bend), chain_(body.spine()) {
   const int m = static_cast<int>(chain_.size()) - 1;
   if (m < 1) throw Error("SIK: the spine needs a joint between humanoid_root and skullbase");
   shape_.assign(chain_.size(), Eigen::Quaterniond::Identity());
@@ -104,6 +104,15 @@ double SikSpine::search_bend(double target_length) {
   return phi;
 }
 
+double SikSpine::flexion_share(const Eigen::Matrix3d& pelvis_frame) const {
+  if (bend_ == SikSpineBend::thesis) return 1.0;
+  // The pelvis' front (Z, normal to the pelvis-head line Y) dips by the sine of the line's
+  // forward lean; past the horizontal (Y pointing down) the sine falls again, the flexion not.
+  const double dip = -pelvis_frame(1, 2);
+  if (dip > 0.0 && pelvis_frame(1, 1) < 0.0) return 1.0;
+  return std::clamp(dip, 0.0, 1.0);
+}
+
 void SikSpine::solve(const SikTargets& targets, const Eigen::Matrix3d& pelvis_frame, bool limits,
                      Pose& pose) {
   Eigen::Vector3d line = targets.head - targets.pelvis;
@@ -115,7 +124,7 @@ void SikSpine::solve(const SikTargets& targets, const Eigen::Matrix3d& pelvis_fr
     if (current_length_ > neutral_length_) reset();  // Alg. 8 line 6: leave the stretch
     stretch_index_ = 0;
     phi_root_ = search_bend(target_length);
-    bent(phi_root_, shape_);
+    bent(flexion_share(pelvis_frame) * phi_root_, shape_);
   } else {
     phi_root_ = 0.0;
     const auto it = std::lower_bound(stretch_length_.begin(), stretch_length_.end(), target_length);

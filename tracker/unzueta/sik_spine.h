@@ -11,10 +11,19 @@
 
 namespace simcap {
 
+// How far the spine flexes when the pelvis-head line is shorter than the neutral spine.
+// thesis: the whole flexion that makes the spine that short (eqs. 8-9). lean (not the thesis'):
+// that flexion times the sine of the line's forward lean from the vertical (world +Y), all of
+// it once the line leans past the horizontal, none when it leans back. A length alone does not
+// say which way the spine bends (a few millimetres of shortening are as much an arched back as
+// a rounded one), but a trunk leaning forward hangs on a flexed spine; the length left over is
+// split between both ends as for a stretch.
+enum class SikSpineBend { thesis, lean };
+
 class SikSpine {
  public:
   // `body` and `limits` must outlive the spine.
-  SikSpine(const SikBody& body, const SikLimits& limits);
+  SikSpine(const SikBody& body, const SikLimits& limits, SikSpineBend bend = SikSpineBend::thesis);
 
   // Sets the rotations of the spine joints and the root's rotation and position in `pose`:
   // skullbase on the line from the pelvis target to the head target, the pelvis' X axis as close
@@ -36,9 +45,12 @@ class SikSpine {
   Eigen::Vector3d bent(double phi_root, std::vector<Eigen::Quaterniond>& rotations) const;
   Eigen::Vector3d head_offset(const std::vector<Eigen::Quaterniond>& rotations) const;
   double search_bend(double target_length);
+  // The share of the length-matching flexion that bend_ keeps for this pelvis frame (0..1).
+  double flexion_share(const Eigen::Matrix3d& pelvis_frame) const;
 
   const SikBody& body_;
   const SikLimits& limits_;
+  SikSpineBend bend_;
   std::vector<int> chain_;  // spine joints, root first
   double neutral_length_ = 0.0;
   double min_phi_root_ = 0.0;  // most flexed root angle the joint limits allow
@@ -47,7 +59,9 @@ class SikSpine {
   std::vector<std::vector<Eigen::Quaterniond>> stretch_;
   std::vector<double> stretch_length_;
 
-  double phi_root_ = 0.0;  // current bend of the root (<= 0: flexion); the others bend -2phi/m
+  // Current length-matching bend of the root (<= 0: flexion; the others bend -2phi/m), where the
+  // next search starts; the shape takes flexion_share() of it.
+  double phi_root_ = 0.0;
   int stretch_index_ = 0;  // current stretching posture (0 = neutral)
   double current_length_ = 0.0;
   std::vector<Eigen::Quaterniond> shape_;  // scratch

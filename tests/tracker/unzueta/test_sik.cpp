@@ -532,5 +532,43 @@ TEST_F(SikTest, KnownOrientationsTwistTheSpine) {
   }
 }
 
+// --spine-bend lean: a pelvis-head line 3% shorter than the neutral spine bends the spine by the
+// sine of the line's forward lean times the thesis' flexion: none upright or leaning back (the
+// neutral shape, the shortening split between both ends), half at 30 degrees forward, all of it
+// past the horizontal.
+TEST_F(SikTest, LeanBendFlexesTheSpineAsTheTrunkLeansForward) {
+  SikLimits limits(body);
+  const double neutral_length = (rest.head - rest.pelvis).norm();
+  const int vertebra = body.spine()[2];
+  // The vertebra's turn and the root's offset from its target, for a line leaning `lean` radians
+  // forward (toward +Z) in the pelvis' sagittal plane.
+  auto solve = [&](SikSpineBend bend, double lean) {
+    const Eigen::Vector3d line(0.0, std::cos(lean), std::sin(lean));
+    Eigen::Matrix3d frame;
+    frame.col(0) = Eigen::Vector3d::UnitX();
+    frame.col(1) = line;
+    frame.col(2) = frame.col(0).cross(line);
+    SikTargets t = rest;
+    t.head = t.pelvis + 0.97 * neutral_length * line;
+    SikSpine spine(body, limits, bend);
+    Pose pose = Pose::neutral(skeleton);
+    spine.solve(t, frame, false, pose);
+    return std::pair{Eigen::AngleAxisd(pose.rotations[vertebra]).angle(),
+                     (pose.root_position - t.pelvis).norm()};
+  };
+  for (double lean : {0.0, -0.3}) {
+    const auto [thesis_turn, thesis_offset] = solve(SikSpineBend::thesis, lean);
+    EXPECT_GT(thesis_turn, 0.01) << lean;
+    EXPECT_LT(thesis_offset, 2e-3) << lean;
+    const auto [turn, offset] = solve(SikSpineBend::lean, lean);
+    EXPECT_NEAR(turn, 0.0, 1e-12) << lean;
+    EXPECT_NEAR(offset, 0.5 * 0.03 * neutral_length, 1e-9) << lean;
+  }
+  EXPECT_NEAR(solve(SikSpineBend::lean, kPi / 6).first,
+              0.5 * solve(SikSpineBend::thesis, kPi / 6).first, 1e-9);
+  EXPECT_NEAR(solve(SikSpineBend::lean, 2.0).first, solve(SikSpineBend::thesis, 2.0).first, 1e-12);
+  EXPECT_GT(solve(SikSpineBend::thesis, 2.0).first, 0.01);
+}
+
 }  // namespace
 }  // namespace simcap
