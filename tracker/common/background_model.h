@@ -2,6 +2,7 @@
 // test fixed: a pixel is foreground when it is unlikely under the background's distribution.
 #pragma once
 
+#include <algorithm>
 #include <opencv2/core/mat.hpp>
 #include <vector>
 
@@ -26,6 +27,30 @@ struct BackgroundOptions {
   double shadow_min_ratio = 0.4;
   double shadow_max_ratio = 0.95;
   double shadow_chroma = 2.0;
+  // Changing light (not in the thesis): after the plates were taken a cloud, a lamp, the sun
+  // moving or the camera's automatic exposure scale each background pixel's brightness by a
+  // factor of its own (a surface turned towards the light more than one in shade) and keep its
+  // chromaticity. Two things follow. The frame's noise (frame_noise) is measured on what is left
+  // once each pixel's brightness is scaled to the frame's whenever the plain difference exceeds
+  // `relit_ratio` times that: most pixels then differ by the light, not by noise. And where the
+  // light grew (at least 1 % of the sampled pixels are the background's colour brightened by
+  // more than 3 sigma), a pixel brighter than the background by a factor up to the 95th
+  // percentile of theirs times `highlight_margin`, with the background's chromaticity (within
+  // shadow_chroma), is background too: Horprasert et al.'s highlighted background, its bound
+  // measured on the frame.
+  bool relight = true;
+  double relit_ratio = 2.0;
+  double highlight_margin = 1.25;
+};
+
+// How a frame's light differs from the plates', measured on a sample of its pixels.
+struct FrameLight {
+  double sigma = 0;        // noise of the plain difference, 8-bit levels (frame_sigma())
+  double relit_sigma = 0;  // noise left once each pixel's brightness is scaled to the frame's
+  bool relit = false;      // the plain difference is the light's (BackgroundOptions::relit_ratio)
+  double highlight = 0;    // > 0: the frame is brighter, its background by up to this factor
+  // The noise the test uses (BackgroundOptions::frame_noise).
+  double noise(double floor) const { return relit ? std::max(relit_sigma, floor) : sigma; }
 };
 
 class GaussianBackground {
@@ -36,6 +61,8 @@ class GaussianBackground {
   cv::Mat foreground(const cv::Mat& frame) const;
   // The frame's noise in 8-bit levels (see BackgroundOptions::frame_noise).
   double frame_sigma(const cv::Mat& frame) const;
+  // The frame's light against the plates' (see BackgroundOptions::relight).
+  FrameLight frame_light(const cv::Mat& frame) const;
 
  private:
   BackgroundOptions options_;

@@ -76,6 +76,68 @@ TEST(GaussianBackground, MeasuresTheFramesOwnNoise) {
   EXPECT_LT(silhouette_iou(GaussianBackground(plates, plate_floor).foreground(noisy), truth), 0.5);
 }
 
+// The light changed after the plates: a third of the image darkened (a cloud), a third
+// brightened past saturation in one channel (a lamp), the person across all three. The
+// brightness factors are measured on the frame, the noise on what is left once each pixel is
+// scaled, so the background stays background and the person is found; the plain test takes
+// the brightened third for the person and, with the frame's noise measured on the plain
+// difference, loses the person's darker half in it.
+TEST(GaussianBackground, FollowsTheLightWhenItChanges) {
+  cv::RNG rng(3);
+  const int rows = 120, cols = 180;
+  const std::vector<cv::Mat> plates = {plate(rng, rows, cols), plate(rng, rows, cols)};
+  cv::Mat frame = plate(rng, rows, cols);
+  cv::Mat cloud = frame(cv::Rect(0, 0, 60, rows)), lamp = frame(cv::Rect(120, 0, 60, rows));
+  cloud.convertTo(cloud, -1, 0.55);
+  lamp.convertTo(lamp, -1, 1.7);  // 100-160 in the first channel: saturated from 150
+  cv::Mat truth(rows, cols, CV_8UC1, cv::Scalar(0));
+  for (const cv::Rect& person : {cv::Rect(40, 20, 100, 25), cv::Rect(75, 45, 30, 60)}) {
+    cv::rectangle(frame, person, cv::Scalar(40, 60, 170), cv::FILLED);
+    cv::rectangle(truth, person, cv::Scalar(255), cv::FILLED);
+  }
+  const GaussianBackground model(plates);
+  const FrameLight light = model.frame_light(frame);
+  EXPECT_GT(light.highlight, 1.7 * 1.1);
+  EXPECT_GT(silhouette_iou(model.foreground(frame), truth), 0.95);
+
+  BackgroundOptions plain;
+  plain.relight = false;
+  EXPECT_LT(silhouette_iou(GaussianBackground(plates, plain).foreground(frame), truth), 0.6);
+
+  // Darkened everywhere: the plain difference is the light's, not noise.
+  cv::Mat dim = plate(rng, rows, cols);
+  dim.convertTo(dim, -1, 0.55);
+  cv::rectangle(dim, cv::Rect(75, 45, 30, 60), cv::Scalar(40, 60, 170), cv::FILLED);
+  cv::Mat dim_truth(rows, cols, CV_8UC1, cv::Scalar(0));
+  cv::rectangle(dim_truth, cv::Rect(75, 45, 30, 60), cv::Scalar(255), cv::FILLED);
+  EXPECT_TRUE(model.frame_light(dim).relit);
+  EXPECT_GT(silhouette_iou(model.foreground(dim), dim_truth), 0.95);
+  EXPECT_LT(silhouette_iou(GaussianBackground(plates, plain).foreground(dim), dim_truth), 0.5);
+
+  // The same light on a frame that did not change: nothing is relit, nothing highlighted.
+  const FrameLight steady = model.frame_light(plate(rng, rows, cols));
+  EXPECT_FALSE(steady.relit);
+  EXPECT_EQ(steady.highlight, 0.0);
+}
+
+// A lamp blows out the brighter half of the room (every channel at 255): white is background
+// where the brightest the background gets elsewhere would saturate it too; the person is not.
+TEST(GaussianBackground, AWhiteBlownOutBackgroundIsBackground) {
+  cv::RNG rng(4);
+  const int rows = 100, cols = 160;
+  cv::Mat room(rows, cols, CV_8UC3, cv::Scalar(100, 95, 90));
+  room(cv::Rect(80, 0, 80, rows)).setTo(cv::Scalar(200, 190, 180));
+  cv::Mat noise(rows, cols, CV_8UC3);
+  rng.fill(noise, cv::RNG::NORMAL, 0, 2);
+  const GaussianBackground model(std::vector<cv::Mat>{room + noise});
+  cv::Mat frame;
+  room.convertTo(frame, -1, 1.5);  // the darker half 150, 142, 135; the brighter one white
+  cv::Mat truth(rows, cols, CV_8UC1, cv::Scalar(0));
+  cv::rectangle(frame, cv::Rect(60, 20, 40, 60), cv::Scalar(40, 60, 170), cv::FILLED);
+  cv::rectangle(truth, cv::Rect(60, 20, 40, 60), cv::Scalar(255), cv::FILLED);
+  EXPECT_GT(silhouette_iou(model.foreground(frame), truth), 0.95);
+}
+
 TEST(GaussianBackground, RejectsMismatchedImages) {
   EXPECT_THROW(GaussianBackground(std::vector<cv::Mat>{}), Error);
   const cv::Mat p(10, 10, CV_8UC3, cv::Scalar(1, 2, 3));
