@@ -161,6 +161,11 @@ class BodyPlan {
     return {s, u * H_ * girth_, v * H_ * girth_, offset, exponent};
   }
   double spacing() const { return 0.0055 * H_; }
+  // An end cap of `wanted` metres, but at most `share` of a tube `length` long: a short foot or
+  // shoulder (small proportions) keeps room for the keys between its caps.
+  static double cap(double wanted, double length, double share) {
+    return std::min(wanted, share * length);
+  }
 
   // A cross-section of the upright trunk or head at canonical height h (fraction of H): semi-axes
   // in units of H, shifted forward by z H.
@@ -259,9 +264,9 @@ class BodyPlan {
     Part p;
     p.tube.axis = {medial, lateral};
     p.tube.reference = Eigen::Vector3d::UnitY();
-    p.tube.start_cap = 0.02 * H_;
-    p.tube.end_cap = 0.025 * H_;
     const double length = (lateral - medial).norm();
+    p.tube.start_cap = cap(0.02 * H_, length, 0.3);
+    p.tube.end_cap = cap(0.025 * H_, length, 0.35);
     p.tube.sections = {k(p.tube.start_cap, 0.024, 0.038), k(length - p.tube.end_cap, 0.027, 0.032)};
     p.tube.segments = 32;
     p.tube.ring_spacing = spacing();
@@ -364,9 +369,10 @@ class BodyPlan {
         toe_pole(toe.x(), 0, toe.z() + margin);
     Part p;
     p.tube.axis = {heel_pole, toe_pole};
-    p.tube.start_cap = 0.018 * H_;
-    p.tube.end_cap = 0.022 * H_;
     const double length = (toe_pole - heel_pole).norm();
+    // The keys below lie at 0.25 to 0.85 of the length.
+    p.tube.start_cap = cap(0.018 * H_, length, 0.2);
+    p.tube.end_cap = cap(0.022 * H_, length, 0.13);
     const auto row = [&](double s, double half_width, double half_height) {
       return k(s, half_width, half_height, {0, half_height * H_ * girth_, 0}, 3.0);
     };

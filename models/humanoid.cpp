@@ -1,5 +1,9 @@
 #include "models/humanoid.h"
 
+#include <iterator>
+#include <sstream>
+#include <utility>
+
 #include "core/error.h"
 
 namespace simcap {
@@ -12,12 +16,28 @@ const std::vector<std::string>& he15_joints() {
   return names;
 }
 
+void check_proportions(const BodyProportions& p) {
+  const std::pair<const char*, double> rising[] = {
+      {"ankle_height", p.ankle_height}, {"knee_height", p.knee_height},
+      {"hip_height", p.hip_height},     {"shoulder_height", p.shoulder_height},
+      {"chin_height", p.chin_height},   {"the head top", 1.0}};
+  for (size_t i = 1; i < std::size(rising); ++i) {
+    if (rising[i - 1].second < rising[i].second) continue;
+    std::ostringstream message;
+    message << "body proportions: " << rising[i - 1].first << " (" << rising[i - 1].second
+            << ") must lie below " << rising[i].first << " (" << rising[i].second
+            << "): heights rise from the ankle to the chin, in fractions of the height";
+    throw Error(message.str());
+  }
+}
+
 Skeleton build_humanoid(const BodyParameters& body) {
   const double H = body.height;
   if (!(H > 0.5 && H < 2.6)) {
     throw Error("body height must be between 0.5 and 2.6 m, got " + std::to_string(H));
   }
   const BodyProportions& p = body.proportions;
+  check_proportions(p);
   Skeleton s;
   auto add = [&](const std::string& name, const std::string& segment, const std::string& parent,
                  double x, double y, double z, bool site = false) {

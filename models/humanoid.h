@@ -34,6 +34,10 @@ struct BodyParameters {
   BodyProportions proportions;
 };
 
+// Throws Error unless the heights rise from the feet to the head: ankle_height < knee_height <
+// hip_height < shoulder_height < chin_height < 1 (the message names the two out of order).
+void check_proportions(const BodyProportions& proportions);
+
 // Builds the skeleton in the neutral pose (standing upright, facing +Z, arms hanging at the
 // sides, feet on the floor y = 0, pelvis above the origin). Joints, parents first:
 //   humanoid_root, sacroiliac, l/r_hip, l/r_knee, l/r_talocrural, l/r_metatarsophalangeal_2,

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/limits.h"
 #include "core/rig.h"
+#include "models/humanoid.h"
 #include "models/procedural_actions.h"
 #include "models/shipped_assets.h"
 #include "models/urdf_io.h"
@@ -564,6 +565,11 @@ Actor SceneReader::read_actor(const Field& f, int index) const {
       if (auto x = p.take(key)) body.proportions.*member = x->number(yaml::positive(1.0));
     }
     p.finish();
+    try {
+      check_proportions(body.proportions);
+    } catch (const Error& e) {
+      v->fail(e.what());
+    }
   }
   if (auto v = m.take("colors")) {
     Map c(*v);

@@ -242,6 +242,20 @@ TEST(BodyMesh, FollowsHeightAndGirth) {
   EXPECT_THROW(build_body_mesh(s, {.girth = 0.1}), Error);
 }
 
+// Small feet and narrow shoulders, within the scene keys' ranges, still make closed parts: the
+// end caps of the shoe and of the shoulder leave room for the sections between them.
+TEST(BodyMesh, SmallFeetAndNarrowShouldersAreMeshed) {
+  for (const auto& [foot, spacing] :
+       {std::pair{0.12, 0.8}, {0.05, 0.8}, {0.152, 0.3}, {0.152, 0.05}}) {
+    BodyProportions p;
+    p.foot_length = foot;
+    p.shoulder_joint_spacing = spacing;
+    const BodyMesh m = build_body_mesh(build_humanoid({.height = 1.75, .proportions = p}));
+    EXPECT_EQ(parts_of(m).size(), 10u) << foot << " " << spacing;
+    for (const auto& part : parts_of(m)) EXPECT_GT(signed_volume(m, part), 0.0);
+  }
+}
+
 TEST(BodyMesh, IsDeterministic) {
   const Skeleton s = build_humanoid();
   const BodyMesh a = build_body_mesh(s), b = build_body_mesh(s);
