@@ -39,6 +39,12 @@ LoopResult run_closed_loop(const LoopRun& run, const fs::path& out) {
   r.detector = run.detector;
   const bool detect = run.detector != LoopDetector::none;
   const int stages = detect ? 4 : 3;
+  if (!detect && track.method == tracker::TrackMethod::triangulate &&
+      track.triangulate.detections.empty()) {
+    throw Error(
+        "--method triangulate needs 2D keypoints of the dataset the loop renders: --detector "
+        "mediapipe or truth-noise (checked before anything is rendered)");
+  }
   if (detect) {
     // Checked before anything is rendered.
     if (const std::string why = detector_method_conflict(run); !why.empty()) throw Error(why);

@@ -5,6 +5,7 @@
 #include "apps/simcap/choice_option.h"
 #include "apps/simcap/number_checks.h"
 #include "core/error.h"
+#include "core/literal_text.h"
 #include "tracker/registry.h"
 
 namespace simcap::cli {
@@ -365,7 +366,7 @@ std::string track_options_text(const tracker::TrackOptions& o) {
   if (o.method == TrackMethod::triangulate) {
     const TriangulateOptions& t = o.triangulate;
     s += ", smooth " + std::string(name_of(kTemporalFilters, t.filter)) + ", max error " +
-         std::to_string(t.triangulation.point.max_error_px) + " px";
+         shortest_text(t.triangulation.point.max_error_px) + " px";
   }
   if (o.method == TrackMethod::monocular) {
     const gomez::MonocularSettings& m = o.monocular.tracker;

@@ -164,6 +164,13 @@ TEST(LoopCli, DetectorTruthNoiseIsTriangulated) {
             1);
   EXPECT_NE(out.find("--method must be triangulate"), std::string::npos) << out;
   EXPECT_FALSE(fs::exists(dir / "bad" / "dataset"));
+  // So is the triangulation without a detector: nothing would give it keypoints.
+  EXPECT_EQ(run_simcap("loop " + quoted(scene) + " -o " + quoted(dir / "none") +
+                           " --frames 2 --method triangulate -q",
+                       &out),
+            1);
+  EXPECT_NE(out.find("needs 2D keypoints"), std::string::npos) << out;
+  EXPECT_FALSE(fs::exists(dir / "none"));
 }
 
 TEST(StressCli, SweepWritesOneRowPerPoint) {
