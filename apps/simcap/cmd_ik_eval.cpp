@@ -7,6 +7,7 @@
 
 #include "apps/simcap/commands.h"
 #include "apps/simcap/number_checks.h"
+#include "apps/simcap/sik_cue_options.h"
 #include "core/atomic_file.h"
 #include "core/csv.h"
 #include "tracker/unzueta/ik_eval.h"
@@ -18,14 +19,14 @@ struct IkEvalArgs {
   std::filesystem::path motion, out;
   std::string method = "sik";
   std::vector<double> pelvis_weights = {1.0, 1.0, 0.0};
-  double pelvis_travel = 0.0;
+  double pelvis_travel = kSikPelvisTravel;
   double damping = 0.75;
   bool no_limits = false;
   bool anatomical_hinges = false;
   bool known_orientations = false;
   bool middle_targets = false;
   std::string swivel = "neutral";
-  std::string spine_bend = "thesis";
+  SikSpineBend spine_bend = SikSpineBend::lean;
   int frames = 0;
 };
 
@@ -62,7 +63,7 @@ IkEvalResult evaluate_solver(const IkEvalArgs& a, const IkClip& clip, const std:
   settings.sik_swivel = a.swivel == "reference"        ? SikSwivel::reference
                         : a.swivel == "least-rotation" ? SikSwivel::least_rotation
                                                        : SikSwivel::neutral;
-  settings.spine_bend = a.spine_bend == "lean" ? SikSpineBend::lean : SikSpineBend::thesis;
+  settings.spine_bend = a.spine_bend;
   const auto solver = make_ik_solver(method, clip.body, settings);
   const std::vector<int> joints = table10_joints(clip.body);
   const IkEvalResult r =
@@ -91,13 +92,13 @@ IkEvalResult evaluate_solver(const IkEvalArgs& a, const IkClip& clip, const std:
                             {"fps", clip.motion.fps},
                             {"height_m", r.height},
                             {"pelvis_weights", a.pelvis_weights},
-                            {"pelvis_travel", a.pelvis_travel},
+                            {"pelvis_travel", a.pelvis_travel},  // sik's and tgbsik's
                             {"limits", !a.no_limits},
                             {"hinge_axes", a.anatomical_hinges ? "anatomical" : "from the clip"},
                             {"known_orientations", a.known_orientations},
                             {"middle_targets", a.middle_targets},
                             {"sik_swivel", a.swivel},
-                            {"spine_bend", a.spine_bend},
+                            {"spine_bend", name_of(kSikSpineBends, a.spine_bend)},
                             {"position_error", r.position_error},
                             {"orientation_error", r.orientation_error},
                             {"ms_per_frame", r.ms_per_frame}};
@@ -207,12 +208,6 @@ void add_ik_eval(CLI::App& app, Action& action) {
       ->delimiter(',')
       ->check(non_negative_number())
       ->capture_default_str();
-  cmd->add_option("--pelvis-travel", args.pelvis_travel,
-                  "Weight of the pelvis X that faces the pelvis' last 0.3 m of travel, times its "
-                  "agreement with the limbs' X (none for side or backward steps; not the "
-                  "thesis')")
-      ->check(non_negative_number())
-      ->capture_default_str();
   cmd->add_option("--damping", args.damping,
                   "DLS and DLS-SVD damping factor in metres (the thesis' 75, read as "
                   "centimetres)")
@@ -233,14 +228,7 @@ void add_ik_eval(CLI::App& app, Action& action) {
                   "knees toward its +Z)")
       ->check(CLI::IsMember({"neutral", "least-rotation", "reference"}))
       ->capture_default_str();
-  cmd->add_option("--spine-bend", args.spine_bend,
-                  "sik, tgbsik: how far the spine flexes when the pelvis-head line is shorter than "
-                  "the neutral spine: thesis (all the flexion that length needs, eqs. 8-9), lean "
-                  "(that flexion times the sine of the line's forward lean from the vertical, all "
-                  "of it past the horizontal, none leaning back; the length left is split between "
-                  "pelvis and head; not the thesis')")
-      ->check(CLI::IsMember({"thesis", "lean"}))
-      ->capture_default_str();
+  add_sik_cue_options(cmd, args.pelvis_travel, args.spine_bend, "sik, tgbsik: ");
   cmd->add_option("--frames", args.frames, "Evaluate only the first N frames (default: all)")
       ->check(non_negative_number());
   cmd->footer(
@@ -250,6 +238,8 @@ void add_ik_eval(CLI::App& app, Action& action) {
       "  simcap ik-eval cmu_131_03_start_hop_stop.bvh --method all -o out/ik/table10\n"
       "  simcap ik-eval cmu_131_01_start_walk_stop.bvh --method sik --middle-targets -o "
       "out/ik/mid\n"
+      "  simcap ik-eval cmu_131_01_start_walk_stop.bvh --method sik --pelvis-travel 0 "
+      "--spine-bend thesis -o out/ik/thesis_sik   (the thesis' SIK)\n"
       "Feeds the clip's pelvis, skull base, wrists and ankles frame by frame to the solver on the\n"
       "clip's own skeleton and scores 22 joints (all but those below wrists and ankles; CMU's two\n"
       "pelvis bones once). pos_err = RMS over frames of (sum of joint position errors) /\n"

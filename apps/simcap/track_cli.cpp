@@ -4,6 +4,7 @@
 
 #include "apps/simcap/choice_option.h"
 #include "apps/simcap/number_checks.h"
+#include "apps/simcap/sik_cue_options.h"
 #include "core/error.h"
 #include "core/literal_text.h"
 #include "tracker/registry.h"
@@ -13,7 +14,7 @@ namespace simcap::cli {
 namespace {
 
 // Sweep keys and the options they set (sweep files name the voxel and noise with their unit).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 34> kSweepKeys{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 36> kSweepKeys{{
     {"method", "--method"},
     {"actor", "--actor"},
     {"silhouettes", "--silhouettes"},
@@ -27,6 +28,8 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 34> kSweepKe
     {"effectors", "--effectors"},
     {"camera", "--camera"},
     {"sik_noise_m", "--sik-noise"},
+    {"pelvis_travel", "--pelvis-travel"},
+    {"spine_bend", "--spine-bend"},
     {"seed", "--seed"},
     {"body", "--body"},
     {"search", "--search"},
@@ -187,6 +190,7 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
   cmd->add_flag("--middle-targets", o.sik.middle_targets,
                 "sik --effectors gt: also give SIK the truth's elbows and knees (each limb swivels "
                 "toward them)");
+  add_sik_cue_options(cmd, o.sik.solver.pelvis_weights.travel, o.sik.solver.spine_bend, "sik: ");
   cmd->add_option("--sik-noise", o.sik.noise_sigma_m,
                   "sik: standard deviation of the noise added to the end-effectors, metres")
       ->check(CLI::Range(0.0, 1.0))

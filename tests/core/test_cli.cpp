@@ -55,5 +55,24 @@ TEST(Cli, OutOfRangeNumbersSayWhatWasExpected) {
   }
 }
 
+// SIK's cue options are the same in ik-eval and track (one solver), and name bad values.
+TEST(Cli, SikCueOptionsNameTheirBadValues) {
+  const std::string bvh = std::string(SIMCAP_MOCAP_DIR) + "/cmu_131_03_start_hop_stop.bvh";
+  for (const std::string& command :
+       {"ik-eval " + bvh, "track " + std::string(SIMCAP_SOURCE_DIR) + " --method sik"}) {
+    std::string out;
+    EXPECT_NE(run_simcap(command + " --spine-bend curve -o never", &out), 0) << command;
+    EXPECT_NE(out.find("--spine-bend: unknown value 'curve' (expected thesis or lean)"),
+              std::string::npos)
+        << command << ":\n"
+        << out;
+    EXPECT_NE(run_simcap(command + " --pelvis-travel -1 -o never", &out), 0) << command;
+    EXPECT_NE(out.find("--pelvis-travel: expected a number of at least 0, got '-1'"),
+              std::string::npos)
+        << command << ":\n"
+        << out;
+  }
+}
+
 }  // namespace
 }  // namespace simcap

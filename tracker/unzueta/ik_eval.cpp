@@ -102,9 +102,11 @@ std::unique_ptr<IkSolver> make_ik_solver(std::string_view method, const SikBody&
     o.spine_bend = settings.spine_bend;
     return std::make_unique<SikSolver>(body, o);
   }
+  SikPelvisWeights thesis_pelvis = settings.pelvis_weights;
+  thesis_pelvis.travel = 0.0;
   if (method == "ccd" || method == "kma") {
     CcdOptions o;
-    o.pelvis_weights = settings.pelvis_weights;
+    o.pelvis_weights = thesis_pelvis;
     o.limits = settings.limits;
     return std::make_unique<CcdSolver>(body, o,
                                        method == "kma" ? CcdVariant::kma : CcdVariant::ccd);
@@ -114,7 +116,7 @@ std::unique_ptr<IkSolver> make_ik_solver(std::string_view method, const SikBody&
         JacobianUpdate::kSdls, JacobianUpdate::kPrioritized}) {
     if (method != jacobian_update_name(update)) continue;
     DlsOptions o;
-    o.pelvis_weights = settings.pelvis_weights;
+    o.pelvis_weights = thesis_pelvis;
     o.limits = settings.limits;
     o.damping = settings.dls_damping;
     o.update = update;

@@ -15,13 +15,20 @@
 
 namespace simcap {
 
+// SIK as simcap runs it by default (ik-eval's sik and tgbsik, `track --method sik`): the thesis'
+// estimate plus two cues it lacks, the pelvis heading from the pelvis' forward travel (weight 2)
+// and the spine's flexion from the trunk's lean. They bring the CMU walk and hop within the
+// thesis' Table 10 averages (UNZUETA.md, "SIK's defaults"); travel 0 and SikSpineBend::thesis
+// give the thesis' SIK.
+inline constexpr double kSikPelvisTravel = 2.0;
+
 struct SikOptions {
-  SikPelvisWeights pelvis_weights;
+  SikPelvisWeights pelvis_weights{.travel = kSikPelvisTravel};
   bool limits = true;  // apply the biomechanical limits of §4.5
   // neutral: SIK; least_rotation: the thesis' TGBSIK (SIK's pelvis, spine and clavicles, TGB limbs
   // with the swivel of least shoulder and hip rotation).
   SikSwivel swivel = SikSwivel::neutral;
-  SikSpineBend spine_bend = SikSpineBend::thesis;
+  SikSpineBend spine_bend = SikSpineBend::lean;
 };
 
 class SikSolver final : public IkSolver {

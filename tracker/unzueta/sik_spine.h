@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+#include "core/name_table.h"
 #include "models/pose.h"
 #include "tracker/unzueta/sik_body.h"
 #include "tracker/unzueta/sik_limits.h"
@@ -19,6 +20,8 @@ namespace simcap {
 // a rounded one), but a trunk leaning forward hangs on a flexed spine; the length left over is
 // split between both ends as for a stretch.
 enum class SikSpineBend { thesis, lean };
+inline constexpr NameTable<SikSpineBend, 2> kSikSpineBends{
+    {{"thesis", SikSpineBend::thesis}, {"lean", SikSpineBend::lean}}};
 
 class SikSpine {
  public:

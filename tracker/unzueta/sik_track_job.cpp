@@ -254,7 +254,7 @@ TrackSummary track_dataset_sik(const std::filesystem::path& dataset,
                                           : (skeleton[skeleton.require("skull_tip")].center -
                                              skeleton[skeleton.require("skullbase")].center)
                                                 .norm();
-  SikSolver solver(SikBody(skeleton), build_body_mesh(skeleton));
+  SikSolver solver(SikBody(skeleton), build_body_mesh(skeleton), options.solver);
   const SikBody& body = solver.body();
 
   std::vector<int> output_joints;

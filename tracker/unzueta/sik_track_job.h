@@ -12,7 +12,7 @@
 #include "tracker/common/silhouettes.h"
 #include "tracker/common/track_summary.h"
 #include "tracker/unzueta/camera_tracker.h"
-#include "tracker/unzueta/sik_pelvis.h"
+#include "tracker/unzueta/sik.h"
 
 namespace simcap {
 
@@ -53,7 +53,7 @@ struct SikTrackOptions {
   // onto the agreed point (studio4 267.8 -> 172.4 mm, hop4 229.0 -> 211.8 mm; UNZUETA.md).
   double multiview_consensus_px = 12.0;
   bool multiview_reseed = true;
-  SikPelvisWeights pelvis_weights;
+  SikOptions solver;    // SIK itself: the same defaults as ik-eval's
   int max_frames = -1;  // the first frames only; < 0: every frame
   bool quiet = false;
 };
@@ -63,7 +63,7 @@ TrackSummary track_sik(const std::filesystem::path& dataset, const std::filesyst
                        const SikTrackOptions& options);
 
 // Reads DATASET/gt/joints3d.csv; needs humanoid_root, skullbase (or skull_tip), l/r_radiocarpal
-// and l/r_talocrural. Solves every frame in order with SIK (limits and collisions on, floor
+// and l/r_talocrural. Solves every frame in order with SIK (options.solver, collisions on, floor
 // y = 0) on build_humanoid() refitted to the truth (sik_humanoid_with_truth_trunk),
 // after adding N(0, noise_sigma_m^2) to each coordinate of each end-effector (std::mt19937_64
 // seeded with `seed`, so a seed gives the same output); with middle_targets also l/r_elbow and

@@ -197,9 +197,7 @@ class Pipeline {
       skeleton_ = build_humanoid(body);
     }
     const BodyMesh mesh = build_body_mesh(skeleton_);
-    SikOptions sik;
-    sik.pelvis_weights = options_.pelvis_weights;
-    solver_.emplace(SikBody(skeleton_), mesh, sik);
+    solver_.emplace(SikBody(skeleton_), mesh, options_.solver);
     parts_.emplace(skeleton_, mesh);
     he15_.clear();
     for (const std::string& name : he15_joints()) he15_.push_back(skeleton_.require(name));
