@@ -160,6 +160,8 @@ INSTANTIATE_TEST_SUITE_P(
                 "actors[0].colors.cape", "expected one of: skin, shirt, trousers, shoes, hair"},
         BadCase{"actors:\n  - motion: {procedural: stand}\n    proportions: {hip_height: 1.5}\n", 3,
                 "actors[0].proportions.hip_height", "in (0, 1]"},
+        BadCase{"actors:\n  - motion: {procedural: stand}\n    proportions: {shoulder_rise: 0.1}\n",
+                3, "actors[0].proportions.shoulder_rise", "in [-0.05, 0.05]"},
         BadCase{"actors:\n  - motion: {procedural: stand}\n    offset: [0, 0]\n", 3,
                 "actors[0].offset", "3 items"},
         BadCase{"actors:\n  - motion: {procedural: stand}\n  - motion: {procedural: stand}\n"
