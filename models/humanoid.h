@@ -30,7 +30,8 @@ struct BodyProportions {
   // simcap choice: the shoulder joints (and the arms under them) raised above the acromion line
   // by this fraction of height, the clavicles turning up about the sternoclavicular joints, as a
   // shrug or a mocap skeleton's convention does (CMU 131_01's subject: about 0.04). Negative
-  // lowers them. The trunk and neck keep their shape.
+  // lowers them. The trunk and neck keep their shape. A retargeted clip turns the clavicles to
+  // its own directions (retarget.h), which undoes most of it.
   double shoulder_rise = 0.0;
 };
 
