@@ -65,9 +65,12 @@ constexpr int kRefitFrame = 4;
 // --init auto measures the shoulders' height again with the arms refitted on kShoulderFrames
 // tracked frames, every kShoulderEvery after the refit (frames 8 to 28: by then the arms have
 // moved), and takes it when it differs by at least kShoulderMinChange (half the grid's step: a
-// smaller change is within the measurement's noise, and every restart moves a walk's course).
+// smaller change is within the measurement's noise, and every restart moves a walk's course);
+// kShoulderMeasures times in all (frames 32 to 52 next: the trunk the first change moved now
+// holds the arms).
 constexpr int kShoulderEvery = 4;
 constexpr int kShoulderFrames = 6;
+constexpr int kShoulderMeasures = 2;
 constexpr double kShoulderMinChange = 0.025;
 // --init auto among others with silhouettes that show everyone: the silhouette pixels this close
 // to the person's own mask are theirs (background subtraction's outline differs from the
@@ -274,10 +277,10 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
   Progress progress("track", static_cast<long>(frames.size()), options.quiet);
   const auto t0 = std::chrono::steady_clock::now();
   size_t next = 0;
-  // --init auto: the frames after the refit the shoulders' height is measured again on, and
-  // the index of the frame being tracked.
+  // --init auto: the frames after the refit the shoulders' height is measured again on, how
+  // often it was, and the index of the frame being tracked.
   std::vector<TrackedObservation> shoulder_frames;
-  int index = -1;
+  int shoulder_measures = 0, index = -1;
   tbb::parallel_pipeline(
       8, tbb::make_filter<void, int>(tbb::filter_mode::serial_in_order,
                                      [&](tbb::flow_control& fc) {
@@ -313,10 +316,13 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
                    ++index;
                    if (refit_frame && index > kRefitFrame &&
                        (index - kRefitFrame) % kShoulderEvery == 0 &&
-                       static_cast<int>(shoulder_frames.size()) < kShoulderFrames) {
+                       shoulder_measures < kShoulderMeasures) {
                      shoulder_frames.push_back({obs, step.pose});
-                     if (static_cast<int>(shoulder_frames.size()) == kShoulderFrames)
+                     if (static_cast<int>(shoulder_frames.size()) == kShoulderFrames) {
                        remeasure_shoulders(tracker, topt, shoulder_frames);
+                       shoulder_frames.clear();
+                       ++shoulder_measures;
+                     }
                    }
                    if (obs->frame == refit_frame) {
                      // The pose tracked from a right start is near enough the truth for the
