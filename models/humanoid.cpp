@@ -87,9 +87,10 @@ Skeleton build_humanoid(const BodyParameters& body) {
     const std::string s_(side);
     add(s_ + "sternoclavicular", s_ + "clavicle", "vt1", sign * 0.012, p.shoulder_height - 0.010,
         0.020);
-    add(s_ + "shoulder", s_ + "upperarm", s_ + "sternoclavicular", sign * shoulder_x,
-        p.shoulder_height - 0.012, -0.006);
-    const double elbow_y = p.shoulder_height - 0.012 - p.upper_arm;
+    const double shoulder_y = p.shoulder_height - 0.012 + p.shoulder_rise;
+    add(s_ + "shoulder", s_ + "upperarm", s_ + "sternoclavicular", sign * shoulder_x, shoulder_y,
+        -0.006);
+    const double elbow_y = shoulder_y - p.upper_arm;
     add(s_ + "elbow", s_ + "forearm", s_ + "shoulder", sign * (shoulder_x + 0.010), elbow_y,
         -0.010);
     const double wrist_y = elbow_y - p.forearm;

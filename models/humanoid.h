@@ -27,6 +27,12 @@ struct BodyProportions {
   // simcap choices: joint centres lie inside the bony breadths.
   double shoulder_joint_spacing = 0.80;  // shoulder centres apart, fraction of shoulder_width
   double hip_joint_spacing = 0.50;       // hip centres apart, fraction of hip_width
+  // simcap choice: the shoulder joints (and the arms under them) raised above the acromion line
+  // by this fraction of height, the clavicles turning up about the sternoclavicular joints, as a
+  // shrug or a mocap skeleton's convention does (CMU 131_01's subject: about 0.04). Negative
+  // lowers them. The trunk and neck keep their shape. A retargeted clip turns the clavicles to
+  // its own directions (retarget.h), which undoes most of it.
+  double shoulder_rise = 0.0;
 };
 
 struct BodyParameters {

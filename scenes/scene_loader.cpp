@@ -564,6 +564,9 @@ Actor SceneReader::read_actor(const Field& f, int index) const {
     for (const auto& [key, member] : scene_names::kProportions) {
       if (auto x = p.take(key)) body.proportions.*member = x->number(yaml::positive(1.0));
     }
+    if (auto x = p.take("shoulder_rise")) {
+      body.proportions.shoulder_rise = x->number(yaml::closed(-0.05, 0.05));
+    }
     p.finish();
     try {
       check_proportions(body.proportions);

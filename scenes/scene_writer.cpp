@@ -208,6 +208,7 @@ void write_actor(YAML::Emitter& out, const Actor& a) {
     for (const auto& [key, member] : scene_names::kProportions) {
       number(out, key, a.body.parameters.proportions.*member);
     }
+    number(out, "shoulder_rise", a.body.parameters.proportions.shoulder_rise);
     out << YAML::EndMap;
   }
   out << YAML::Key << "colors" << YAML::Value << YAML::BeginMap;

@@ -51,6 +51,24 @@ TEST(Humanoid, ProportionsFollowHeightAndFaceForward) {
   EXPECT_THROW(build_humanoid({.height = 0.1, .proportions = {}}), Error);
 }
 
+TEST(Humanoid, ShoulderRiseLiftsTheArmsAndKeepsTheTrunk) {
+  const Skeleton plain = build_humanoid();
+  BodyParameters shrugged;
+  shrugged.proportions.shoulder_rise = 0.04;
+  const Skeleton s = build_humanoid(shrugged);
+  auto rise = [&](const char* n) {
+    return s[s.require(n)].center.y() - plain[plain.require(n)].center.y();
+  };
+  for (const char* arm : {"l_shoulder", "r_elbow", "l_radiocarpal", "r_hand_tip"})
+    EXPECT_NEAR(rise(arm), 0.04 * 1.75, 1e-12) << arm;
+  for (const char* trunk : {"vc7", "l_sternoclavicular", "l_hip", "skull_tip"})
+    EXPECT_EQ(rise(trunk), 0) << trunk;
+  EXPECT_NEAR(
+      (s[s.require("l_elbow")].center - s[s.require("l_shoulder")].center).norm(),
+      (plain[plain.require("l_elbow")].center - plain[plain.require("l_shoulder")].center).norm(),
+      1e-12);
+}
+
 TEST(ForwardKinematics, NeutralPoseGivesTheCentres) {
   const Skeleton s = build_humanoid();
   const auto p = joint_positions(s, Pose::neutral(s));

@@ -99,7 +99,8 @@ inline void expect_scenes_equal(const Scene& a, const Scene& b, double tol = 1e-
                                {p.shoulder_width, q.shoulder_width},
                                {p.hip_width, q.hip_width},
                                {p.shoulder_joint_spacing, q.shoulder_joint_spacing},
-                               {p.hip_joint_spacing, q.hip_joint_spacing}}) {
+                               {p.hip_joint_spacing, q.hip_joint_spacing},
+                               {p.shoulder_rise, q.shoulder_rise}}) {
       EXPECT_NEAR(u, v, tol);
     }
     EXPECT_NEAR(x.body.shape.girth, y.body.shape.girth, tol);

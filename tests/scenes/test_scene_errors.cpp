@@ -163,6 +163,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{
             "actors:\n  - motion: {procedural: stand}\n    proportions: {shoulder_height: 0.95}\n",
             3, "actors[0].proportions", "shoulder_height (0.95) must lie below chin_height (0.87)"},
+        BadCase{"actors:\n  - motion: {procedural: stand}\n    proportions: {shoulder_rise: 0.1}\n",
+                3, "actors[0].proportions.shoulder_rise", "in [-0.05, 0.05]"},
         BadCase{"actors:\n  - motion: {procedural: stand}\n    offset: [0, 0]\n", 3,
                 "actors[0].offset", "3 items"},
         BadCase{"actors:\n  - motion: {procedural: stand}\n  - motion: {procedural: stand}\n"

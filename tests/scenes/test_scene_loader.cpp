@@ -211,7 +211,7 @@ actors:
   - name: alice
     height: 1.62
     girth: 1.1
-    proportions: {hip_height: 0.52, forearm: 0.15}
+    proportions: {hip_height: 0.52, forearm: 0.15, shoulder_rise: -0.01}
     colors: {shirt: "#ff0000", hair: [0.9, 0.8, 0.1]}
     motion: {bvh: clips/walk.bvh, units: 0.0254}
     offset: [0.5, 0, -1]
@@ -230,6 +230,7 @@ actors:
   EXPECT_EQ(a.body.shape.girth, 1.1);
   EXPECT_EQ(a.body.parameters.proportions.hip_height, 0.52);
   EXPECT_EQ(a.body.parameters.proportions.forearm, 0.15);
+  EXPECT_EQ(a.body.parameters.proportions.shoulder_rise, -0.01);
   EXPECT_EQ(a.body.parameters.proportions.knee_height, BodyProportions{}.knee_height);
   const Actor defaults;
   EXPECT_EQ(a.colors[static_cast<int>(MaterialRegion::skin)],

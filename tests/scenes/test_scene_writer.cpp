@@ -42,7 +42,7 @@ actors:
   - name: bob
     height: 1.83
     girth: 1.2
-    proportions: {knee_height: 0.29, hip_joint_spacing: 0.55}
+    proportions: {knee_height: 0.29, hip_joint_spacing: 0.55, shoulder_rise: 0.03}
     colors: {skin: [0.7, 0.5, 0.4], trousers: "#112233"}
     motion: {bvh: walk.bvh, units: 0.0254}
     offset: [0.1, 0.02, -0.3]
@@ -120,7 +120,7 @@ TEST(SceneWriter, WritesEveryDefaultAndAnExplicitRig) {
                           "yaw_deg", "time_offset"}) {
     EXPECT_TRUE(actor[key].IsDefined()) << key;
   }
-  EXPECT_EQ(actor["proportions"].size(), 13u);
+  EXPECT_EQ(actor["proportions"].size(), 14u);
   EXPECT_EQ(actor["colors"].size(), 5u);
   EXPECT_EQ(actor["motion"]["procedural"].as<std::string>(), "stand");
   EXPECT_EQ(actor["motion"]["duration"].as<double>(), ProceduralSpec{}.duration_s);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -22,6 +23,7 @@
 #include "tracker/moschini/auto_start.h"
 #include "tracker/moschini/inspection.h"
 #include "tracker/moschini/pose_init.h"
+#include "tracker/moschini/shoulder_height.h"
 #include "tracker/moschini/surface_fit.h"
 
 namespace simcap::tracker {
@@ -60,6 +62,16 @@ constexpr int kStartFrames = 5;
 // the centerline's offsets again and from then on trusts the silhouettes, as --init gt does
 // from the first frame (MOSCHINI.md, "`--init auto` now"): 3 and 5 did worse on main's start.
 constexpr int kRefitFrame = 4;
+// --init auto measures the shoulders' height again with the arms refitted on kShoulderFrames
+// tracked frames, every kShoulderEvery after the refit (frames 8 to 28: by then the arms have
+// moved), and takes it when it differs by at least kShoulderMinChange (half the grid's step: a
+// smaller change is within the measurement's noise, and every restart moves a walk's course);
+// kShoulderMeasures times in all (frames 32 to 52 next: the trunk the first change moved now
+// holds the arms).
+constexpr int kShoulderEvery = 4;
+constexpr int kShoulderFrames = 6;
+constexpr int kShoulderMeasures = 2;
+constexpr double kShoulderMinChange = 0.025;
 // --init auto among others with silhouettes that show everyone: the silhouette pixels this close
 // to the person's own mask are theirs (background subtraction's outline differs from the
 // rendered one by a few pixels: shadows, the clean-up's closing).
@@ -84,6 +96,21 @@ BodyDimensions larger(BodyDimensions dims, double by) {
         &dims.calf, &dims.foot, &dims.root_above_hips, &dims.root_forward})
     *length *= factor;
   return dims;
+}
+
+// Restarts `tracker` from the last of `frames` with the shoulders' height its arms measure
+// (shoulder_height.h), when it differs from the tracked body's by kShoulderMinChange or more.
+void remeasure_shoulders(std::optional<MoschiniTracker>& tracker, const TrackerOptions& options,
+                         const std::vector<TrackedObservation>& frames) {
+  BodyDimensions dims = tracker->model().dimensions();
+  const BodySurface surface = tracker->surface();
+  const AutoStartOptions range;
+  const ShoulderHeight found = shoulders_from_arms(
+      dims, surface, options, frames, range.shoulders_lo, range.shoulders_hi, range.evaluations);
+  if (std::abs(found.d_s - dims.d_s) < kShoulderMinChange) return;
+  dims.d_s = found.d_s;
+  tracker.emplace(dims, surface, options);
+  tracker->start(found.last);
 }
 
 }  // namespace
@@ -250,6 +277,10 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
   Progress progress("track", static_cast<long>(frames.size()), options.quiet);
   const auto t0 = std::chrono::steady_clock::now();
   size_t next = 0;
+  // --init auto: the frames after the refit the shoulders' height is measured again on, how
+  // often it was, and the index of the frame being tracked.
+  std::vector<TrackedObservation> shoulder_frames;
+  int shoulder_measures = 0, index = -1;
   tbb::parallel_pipeline(
       8, tbb::make_filter<void, int>(tbb::filter_mode::serial_in_order,
                                      [&](tbb::flow_control& fc) {
@@ -282,6 +313,17 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
                    sink(ds, *obs, step, *tracker);
                    if (refit_frame && obs->frame <= *refit_frame)
                      lowest_ankle = std::min(lowest_ankle, ankle_of(tracker->model(), step.pose));
+                   ++index;
+                   if (refit_frame && index > kRefitFrame &&
+                       (index - kRefitFrame) % kShoulderEvery == 0 &&
+                       shoulder_measures < kShoulderMeasures) {
+                     shoulder_frames.push_back({obs, step.pose});
+                     if (static_cast<int>(shoulder_frames.size()) == kShoulderFrames) {
+                       remeasure_shoulders(tracker, topt, shoulder_frames);
+                       shoulder_frames.clear();
+                       ++shoulder_measures;
+                     }
+                   }
                    if (obs->frame == refit_frame) {
                      // The pose tracked from a right start is near enough the truth for the
                      // capsules and the offsets that --init gt measures on its first frame.

@@ -224,6 +224,20 @@ int nearest_capsule(const SilhouetteRay& ray, const PlacedSurface& surface, int 
   return owner;
 }
 
+// Normal equations whose step leaves every parameter but the arms' angles where it is.
+void hold_all_but_arms(Eigen::MatrixXd& H, Eigen::VectorXd& rhs) {
+  for (int i = 0; i < H.rows(); ++i) {
+    const int angle = i - 6;
+    if ((angle >= kLShoulder1 && angle <= kRElbow) ||
+        (angle >= kLWristFlexion && angle <= kRWristDeviation))
+      continue;
+    H.row(i).setZero();
+    H.col(i).setZero();
+    H(i, i) = 1;
+    rhs(i) = 0;
+  }
+}
+
 }  // namespace
 
 PoseRefiner::Associations PoseRefiner::associate(const IcpTargets& targets, const StickPose& pose,
@@ -419,6 +433,7 @@ void PoseRefiner::refine(const IcpTargets& targets, StickPose& pose) const {
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(np);
     assoc = associate(targets, pose, it > 0 ? &assoc : nullptr);
     const double cost = evaluate(targets, assoc, pose, &start, &H, &rhs);
+    if (options_.arms_only) hold_all_but_arms(H, rhs);
     const double scale = H.diagonal().mean();
     if (!(scale > 0)) return;
     bool improved = false;

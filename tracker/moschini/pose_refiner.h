@@ -48,6 +48,10 @@ struct RefineOptions {
   // translation): directions the data barely observe then stay put instead of drifting, and a
   // limb hidden against the torso does not jump to another hidden place.
   double motion_prior_m_per_rad = 0.05;
+  // Only the arms' angles (shoulders, elbows, wrists) move; the torso, head and legs stay where
+  // the refinement starts: --init auto measures the shoulders' height by how well the arms hung
+  // from it explain the silhouettes (shoulder_height.h).
+  bool arms_only = false;
 };
 
 class PoseRefiner {
