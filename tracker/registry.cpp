@@ -215,15 +215,20 @@ void check_shape(const TrackOptions& given, const DatasetShape& shape, const std
                  [&](const DatasetNeeds& n) { return missing_cameras(n, shape.cameras); });
 }
 
+void check_dataset(const TrackOptions& options, const fs::path& dataset) {
+  const Dataset chosen(dataset, options.actor);
+  refuse_actor(options, chosen.actors(), chosen.actor());
+  refuse_missing(dataset.string(), options,
+                 [&](const DatasetNeeds& n) { return missing_for(n, chosen); });
+}
+
 TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
                            const TrackOptions& given) {
   TrackOptions options = given;
   options.method = resolve_method(given.method, Dataset(dataset));
   const TrackerFamily& family = tracker_family(options.method);
+  check_dataset(options, dataset);
   const Dataset chosen(dataset, options.actor);
-  refuse_actor(options, chosen.actors(), chosen.actor());
-  refuse_missing(dataset.string(), options,
-                 [&](const DatasetNeeds& n) { return missing_for(n, chosen); });
   TrackFolder folder(out);
   TrackSummary summary = family.run(dataset, folder.path(), options);
   export_track_motion(folder.path(), chosen.fps(), options.exports);

@@ -61,6 +61,11 @@ std::string missing_for(const DatasetNeeds& needs, const Dataset& dataset);
 // scene before it renders.
 void check_shape(const TrackOptions& options, const DatasetShape& shape, const std::string& where);
 
+// Throws the Error track_dataset throws before it writes anything, for `options` (the method
+// resolved) on `dataset`: an unknown --actor, one the method does not track, what the dataset
+// lacks. `simcap bench track` checks with it too.
+void check_dataset(const TrackOptions& options, const std::filesystem::path& dataset);
+
 // Runs options.method (resolved) over `dataset` into `out` after checking that the dataset
 // suits it; a dataset that does not is an Error saying what it lacks and which methods would
 // take it.
