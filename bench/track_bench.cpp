@@ -10,7 +10,6 @@
 #include <string_view>
 #include <vector>
 
-#include "core/error.h"
 #include "models/detections.h"
 #include "tracker/common/dataset.h"
 #include "tracker/common/track_folder.h"
@@ -166,11 +165,7 @@ void run_track_benchmark(const fs::path& dataset, const TrackBenchOptions& given
   TrackBenchOptions o = given;
   o.track.method = resolve_method(given.track.method, ds);
   const TrackerFamily& family = tracker_family(o.track.method);
-  const std::string missing = missing_for(family.needs(o.track), ds);
-  if (!missing.empty()) {
-    throw Error(dataset.string() + ": " + missing + " for --method " +
-                std::string(name_of(kTrackMethods, o.track.method)));
-  }
+  check_dataset(o.track, dataset);
   if (o.track.method == TrackMethod::triangulate) {
     run_triangulate_benchmark(dataset, o, out);
     return;

@@ -33,8 +33,8 @@ void check_proportions(const BodyProportions& p) {
 
 Skeleton build_humanoid(const BodyParameters& body) {
   const double H = body.height;
-  if (!(H > 0.5 && H < 2.6)) {
-    throw Error("body height must be between 0.5 and 2.6 m, got " + std::to_string(H));
+  if (!(H >= 0.5 && H <= 2.6)) {
+    throw Error("body height must be in [0.5, 2.6] m, got " + std::to_string(H));
   }
   const BodyProportions& p = body.proportions;
   check_proportions(p);

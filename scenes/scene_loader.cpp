@@ -32,6 +32,9 @@ using yaml::Field;
 using yaml::Map;
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
+// A subject's standing height, m (within what build_humanoid builds).
+constexpr double kMinHeight = 0.5;
+constexpr double kMaxHeight = 2.5;
 
 // 'auto' (0) or metres per file unit.
 double read_units(const Field& v) {
@@ -339,7 +342,8 @@ std::vector<Camera> SceneReader::read_rig(const Field& f, Scene& scene) const {
         v->fail("a corners rig has exactly 4 cameras (use type: ring or explicit for others)");
       }
       auto inset_field = m.take("inset");
-      if (inset_field) inset = inset_field->number(yaml::non_negative(1000));
+      // Zero would put the cameras on the walls, where no camera centre may be.
+      if (inset_field) inset = inset_field->number(yaml::positive(1000));
       if (2 * inset >= std::min(room.size.x(), room.size.z())) {
         (inset_field ? *inset_field : f).fail("the inset must be less than half the room size");
       }
@@ -551,12 +555,16 @@ Actor SceneReader::read_actor(const Field& f, int index) const {
     }
   }
   BodyParameters& body = a.body.parameters;
-  if (auto v = m.take("height")) body.height = v->number(yaml::closed(0.5, 2.5));
+  if (auto v = m.take("height")) body.height = v->number(yaml::closed(kMinHeight, kMaxHeight));
   if (auto v = m.take("girth")) a.body.shape.girth = v->number(yaml::closed(0.5, 2.0));
-  if (auto v = m.take("vary")) {
-    Map p(*v);
-    if (auto x = p.take("height")) a.vary.height = x->number(yaml::closed(0.0, 0.5));
-    if (auto x = p.take("proportions")) a.vary.proportions = x->number(yaml::closed(0.0, 0.1));
+  const std::optional<Field> vary = m.take("vary");
+  std::optional<Field> vary_height, vary_proportions;
+  if (vary) {
+    Map p(*vary);
+    vary_height = p.take("height");
+    if (vary_height) a.vary.height = vary_height->number(yaml::closed(0.0, 0.5));
+    vary_proportions = p.take("proportions");
+    if (vary_proportions) a.vary.proportions = vary_proportions->number(yaml::closed(0.0, 0.1));
     p.finish();
   }
   if (auto v = m.take("proportions")) {
@@ -572,6 +580,27 @@ Actor SceneReader::read_actor(const Field& f, int index) const {
       check_proportions(body.proportions);
     } catch (const Error& e) {
       v->fail(e.what());
+    }
+  }
+  // Every subject a seed can draw (seeded_choices.cpp) must be a body simcap builds.
+  if (vary_height &&
+      (body.height - a.vary.height < kMinHeight || body.height + a.vary.height > kMaxHeight)) {
+    vary_height->fail("height " + yaml::format_number(body.height) + " +- " +
+                      yaml::format_number(a.vary.height) + " m leaves [" +
+                      yaml::format_number(kMinHeight) + ", " + yaml::format_number(kMaxHeight) +
+                      "] m, the heights a subject may have");
+  }
+  if (vary_proportions) {
+    for (const double leg : {1.0 - a.vary.proportions, 1.0 + a.vary.proportions}) {
+      BodyProportions p = body.proportions;
+      p.hip_height *= leg;
+      p.knee_height *= leg;
+      try {
+        check_proportions(p);
+      } catch (const Error& e) {
+        vary_proportions->fail(std::string(e.what()) + " with the legs " +
+                               yaml::format_number(leg) + " times as long");
+      }
     }
   }
   if (auto v = m.take("colors")) {

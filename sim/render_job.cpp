@@ -79,6 +79,8 @@ void select_cameras(Scene& scene, const std::vector<std::string>& wanted) {
   });
 }
 
+}  // namespace
+
 Scene load_for_render(const fs::path& scene_file, const RenderOptions& options) {
   if (!fs::exists(scene_file)) throw Error(scene_file.string() + ": scene file not found");
   Scene scene = load_scene(scene_file, options.overrides);
@@ -111,6 +113,8 @@ Scene load_for_render(const fs::path& scene_file, const RenderOptions& options) 
   if (!options.cameras.empty()) select_cameras(scene, options.cameras);
   return scene;
 }
+
+namespace {
 
 // A simcap dataset announces itself by a meta.json with simcap's version in it.
 bool holds_dataset(const fs::path& dir) {

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "scenes/scene.h"
+
 namespace simcap {
 
 struct RenderOptions {
@@ -46,6 +48,10 @@ struct RenderSummary {
   double write_seconds = 0;
   std::filesystem::path dataset;
 };
+
+// The scene render_dataset renders with these options (overrides, seed, --motion, --frames and
+// --cameras applied), checked as it checks it; throws Error.
+Scene load_for_render(const std::filesystem::path& scene_file, const RenderOptions& options);
 
 // Renders `scene_file` into `out_dir`. The folder must not exist or be empty, unless `resume`
 // or `overwrite` says what to do with what is there. Everything that can be checked before

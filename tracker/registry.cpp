@@ -84,6 +84,13 @@ constexpr std::array kFamilies{
                     n.colour = e != EffectorSource::gt;
                     n.depth = e == EffectorSource::depth;
                     n.min_cameras = e == EffectorSource::multiview ? 2 : 1;
+                    if (e == EffectorSource::multiview) {
+                      n.option = "--effectors multiview";
+                      n.instead = "--effectors depth or mono (one camera)";
+                    } else if (e == EffectorSource::depth) {
+                      n.option = "--effectors depth";
+                      n.instead = "--effectors mono or multiview (colour only)";
+                    }
                     return n;
                   },
                   false, run_sik_family},
@@ -123,9 +130,13 @@ std::span<const TrackerFamily> tracker_families() {
   return kFamilies;
 }
 
-TrackMethod resolve_method(TrackMethod method, const Dataset& dataset) {
+TrackMethod resolve_method(TrackMethod method, int cameras) {
   if (method != TrackMethod::automatic) return method;
-  return dataset.camera_count() >= 2 ? TrackMethod::moschini : TrackMethod::monocular;
+  return cameras >= 2 ? TrackMethod::moschini : TrackMethod::monocular;
+}
+
+TrackMethod resolve_method(TrackMethod method, const Dataset& dataset) {
+  return resolve_method(method, dataset.camera_count());
 }
 
 const TrackerFamily& tracker_family(TrackMethod method) {
@@ -135,11 +146,52 @@ const TrackerFamily& tracker_family(TrackMethod method) {
   throw Error("--method: no tracker family '" + method_name(method) + "'");
 }
 
+namespace {
+
+std::string missing_cameras(const DatasetNeeds& needs, int cameras) {
+  if (cameras >= needs.min_cameras) return {};
+  return std::to_string(cameras) + (cameras == 1 ? " camera" : " cameras") + ", needs at least " +
+         std::to_string(needs.min_cameras);
+}
+
+// Throws when `missing` finds something the method (resolved) lacks, saying what, for which
+// option, and which settings of the method or other methods do without it.
+template <typename Missing>
+void refuse_missing(const std::string& where, const TrackOptions& options, Missing missing) {
+  const TrackerFamily& family = tracker_family(options.method);
+  const DatasetNeeds needs = family.needs(options);
+  const std::string lack = missing(needs);
+  if (lack.empty()) return;
+  std::string others;
+  if (!needs.instead.empty())
+    others = "--method " + method_name(options.method) + " " + std::string(needs.instead);
+  for (const TrackerFamily& f : kFamilies) {
+    TrackOptions alternative = options;
+    alternative.method = f.method;
+    if (f.method != options.method && missing(f.needs(alternative)).empty()) {
+      others += (others.empty() ? "" : ", ") + ("--method " + method_name(f.method));
+    }
+  }
+  throw Error(where + ": " + lack + " for --method " + method_name(options.method) +
+              (needs.option.empty() ? "" : " " + std::string(needs.option)) + " (" +
+              std::string(family.summary) + "); " +
+              (others.empty() ? std::string("no tracker takes this dataset")
+                              : "use " + others + " instead"));
+}
+
+void refuse_actor(const TrackOptions& options, const std::vector<std::string>& actors, int actor) {
+  if (actor != 0 && !tracker_family(options.method).any_actor) {
+    throw Error("--actor " + options.actor + ": --method " + method_name(options.method) +
+                " tracks only the first actor (" + actors.front() +
+                "); --method moschini tracks any");
+  }
+}
+
+}  // namespace
+
 std::string missing_for(const DatasetNeeds& needs, const Dataset& dataset) {
-  const int cameras = dataset.camera_count();
-  if (cameras < needs.min_cameras) {
-    return std::to_string(cameras) + (cameras == 1 ? " camera" : " cameras") + ", needs at least " +
-           std::to_string(needs.min_cameras);
+  if (std::string lack = missing_cameras(needs, dataset.camera_count()); !lack.empty()) {
+    return lack;
   }
   for (const auto& [wanted, kind] : {std::pair{needs.colour, "rgb"}, {needs.depth, "depth"}}) {
     if (!wanted) continue;
@@ -155,35 +207,28 @@ std::string missing_for(const DatasetNeeds& needs, const Dataset& dataset) {
   return {};
 }
 
+void check_shape(const TrackOptions& given, const DatasetShape& shape, const std::string& where) {
+  TrackOptions options = given;
+  options.method = resolve_method(given.method, shape.cameras);
+  refuse_actor(options, shape.actors, find_actor(shape.actors, options.actor, "--actor"));
+  refuse_missing(where, options,
+                 [&](const DatasetNeeds& n) { return missing_cameras(n, shape.cameras); });
+}
+
+void check_dataset(const TrackOptions& options, const fs::path& dataset) {
+  const Dataset chosen(dataset, options.actor);
+  refuse_actor(options, chosen.actors(), chosen.actor());
+  refuse_missing(dataset.string(), options,
+                 [&](const DatasetNeeds& n) { return missing_for(n, chosen); });
+}
+
 TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
                            const TrackOptions& given) {
   TrackOptions options = given;
   options.method = resolve_method(given.method, Dataset(dataset));
   const TrackerFamily& family = tracker_family(options.method);
+  check_dataset(options, dataset);
   const Dataset chosen(dataset, options.actor);
-  if (chosen.actor() != 0 && !family.any_actor) {
-    throw Error("--actor " + options.actor + ": --method " + method_name(options.method) +
-                " tracks only the first actor (" + chosen.actors().front() +
-                "); --method moschini tracks any");
-  }
-  {
-    const Dataset& ds = chosen;
-    const std::string missing = missing_for(family.needs(options), ds);
-    if (!missing.empty()) {
-      std::string others;
-      for (const TrackerFamily& f : kFamilies) {
-        TrackOptions alternative = options;
-        alternative.method = f.method;
-        if (f.method != options.method && missing_for(f.needs(alternative), ds).empty()) {
-          others += (others.empty() ? "" : ", ") + ("--method " + method_name(f.method));
-        }
-      }
-      throw Error(dataset.string() + ": " + missing + " for --method " +
-                  method_name(options.method) + " (" + std::string(family.summary) + "); " +
-                  (others.empty() ? std::string("no tracker takes this dataset")
-                                  : "use " + others + " instead"));
-    }
-  }
   TrackFolder folder(out);
   TrackSummary summary = family.run(dataset, folder.path(), options);
   export_track_motion(folder.path(), chosen.fps(), options.exports);

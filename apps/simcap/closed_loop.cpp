@@ -52,6 +52,14 @@ LoopResult run_closed_loop(const LoopRun& run, const fs::path& out) {
     track.triangulate.detections = out / "detections.json";
   }
 
+  if (run.existing_dataset.empty()) {
+    // The tracker's refusals that the scene decides (cameras, actors), before anything is
+    // rendered.
+    const Scene scene = load_for_render(run.scene, render);
+    tracker::DatasetShape shape{static_cast<int>(scene.cameras.size()), {}};
+    for (const Actor& a : scene.actors) shape.actors.push_back(a.name);
+    tracker::check_shape(track, shape, run.scene.string());
+  }
   auto t = std::chrono::steady_clock::now();
   if (run.existing_dataset.empty()) {
     announce(run.quiet, 1, stages, "render");

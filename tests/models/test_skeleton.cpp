@@ -51,6 +51,14 @@ TEST(Humanoid, ProportionsFollowHeightAndFaceForward) {
   EXPECT_THROW(build_humanoid({.height = 0.1, .proportions = {}}), Error);
 }
 
+// A scene's actors[i].height takes [0.5, 2.5] m, both ends included: both build.
+TEST(Humanoid, BuildsTheSceneHeightsEndsIncluded) {
+  for (double H : {0.5, 2.5}) {
+    const Skeleton s = build_humanoid({.height = H, .proportions = {}});
+    EXPECT_NEAR(s[s.require("skull_tip")].center.y(), H, 1e-12);
+  }
+}
+
 TEST(Humanoid, ShoulderRiseLiftsTheArmsAndKeepsTheTrunk) {
   const Skeleton plain = build_humanoid();
   BodyParameters shrugged;

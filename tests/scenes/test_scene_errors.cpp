@@ -78,6 +78,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"rig:\n  type: ring\n  radius: 0\n", 3, "rig.radius", "in (0, 1000]"},
         BadCase{"rig:\n  type: ring\n  radius: 5\n", 3, "rig.radius", "outside the room"},
         BadCase{"rig:\n  type: corners\n  height: 3.5\n", 3, "rig.height", "outside the room"},
+        BadCase{"rig:\n  type: corners\n  inset: 0\n", 3, "rig.inset", "a number in (0, 1000]"},
         BadCase{"rig:\n  type: corners\n  count: 6\n", 3, "rig.count", "exactly 4 cameras"},
         BadCase{"rig:\n  type: corners\n  inset: 2\n", 3, "rig.inset", "less than half"},
         BadCase{"rig:\n  type: corners\n  radius: 2\n", 3, "rig.radius",
@@ -156,6 +157,14 @@ INSTANTIATE_TEST_SUITE_P(
                 "models/assets/nowhere.bvh' does not exist"},
         BadCase{"actors:\n  - motion: {procedural: stand}\n    height: 3\n", 3, "actors[0].height",
                 "in [0.5, 2.5]"},
+        BadCase{
+            "actors:\n  - motion: {procedural: stand}\n    height: 0.6\n    vary: {height: 0.5}\n",
+            4, "actors[0].vary.height", "height 0.6 +- 0.5 m leaves [0.5, 2.5] m"},
+        BadCase{"actors:\n  - motion: {procedural: stand}\n    vary: {proportions: 0.1}\n"
+                "    proportions: {hip_height: 0.78}\n",
+                3, "actors[0].vary.proportions",
+                "hip_height (0.858) must lie below shoulder_height (0.818): heights rise from the "
+                "ankle to the chin, in fractions of the height with the legs 1.1 times as long"},
         BadCase{"actors:\n  - motion: {procedural: stand}\n    colors: {cape: [1, 0, 0]}\n", 3,
                 "actors[0].colors.cape", "expected one of: skin, shirt, trousers, shoes, hair"},
         BadCase{"actors:\n  - motion: {procedural: stand}\n    proportions: {hip_height: 1.5}\n", 3,

@@ -6,6 +6,9 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <regex>
+#include <sstream>
 
 #include "models/body_source.h"
 #include "models/humanoid.h"
@@ -85,6 +88,30 @@ TEST(ShippedScenes, NothingElseIsShippedUntested) {
   auto expected = kShipped;
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(found, expected);
+}
+
+// Each `--set key=a|b` that the table of shipped scenes in scenes/README.md suggests for a scene
+// loads with that scene, every alternative.
+TEST(ShippedScenes, TheOverridesTheReadmeSuggestsLoad) {
+  std::ifstream readme(SIMCAP_SOURCE_DIR "/scenes/README.md");
+  const std::regex row(R"(^\| `(\w+)\.yaml` \|.*)");
+  const std::regex set(R"(`--set ([^=`]+)=([^`]+)`)");
+  int suggested = 0;
+  for (std::string line; std::getline(readme, line);) {
+    std::smatch scene;
+    if (!std::regex_match(line, scene, row)) continue;
+    for (std::sregex_iterator m(line.begin(), line.end(), set), end; m != end; ++m) {
+      std::string values = std::regex_replace((*m)[2].str(), std::regex(R"(\\\|)"), "|");
+      std::stringstream alternatives(values);
+      for (std::string value; std::getline(alternatives, value, '|');) {
+        const std::string override = (*m)[1].str() + "=" + value;
+        SCOPED_TRACE(scene[1].str() + ": " + override);
+        EXPECT_NO_THROW(load_scene(shipped_scene_path(scene[1].str()), {override}));
+        ++suggested;
+      }
+    }
+  }
+  EXPECT_GE(suggested, 3);
 }
 
 TEST(ShippedScenes, Studio4IsTheDocumentedDefault) {

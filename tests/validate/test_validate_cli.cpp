@@ -173,6 +173,41 @@ TEST(LoopCli, DetectorTruthNoiseIsTriangulated) {
   EXPECT_FALSE(fs::exists(dir / "none"));
 }
 
+// What the scene decides -- its cameras, its actors -- refuses a tracker before anything is
+// rendered, with the refusal `simcap track` gives.
+TEST(LoopCli, RefusesATrackerTheSceneCannotFeedBeforeRendering) {
+  TempDir dir;
+  std::string out;
+  const fs::path scenes = fs::path(SIMCAP_SOURCE_DIR) / "scenes";
+  const auto refused = [&](const fs::path& scene, const std::string& args) {
+    const int status =
+        run_simcap("loop " + quoted(scene) + " -o " + quoted(dir / "out") + " -q " + args, &out);
+    EXPECT_FALSE(fs::exists(dir / "out")) << args;
+    return status;
+  };
+  EXPECT_EQ(refused(scenes / "monocular.yaml", "--method moschini"), 1);
+  EXPECT_NE(out.find("monocular.yaml: 1 camera, needs at least 2 for --method moschini"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(refused(scenes / "monocular.yaml", "--method sik --effectors multiview"), 1);
+  EXPECT_NE(out.find("needs at least 2 for --method sik --effectors multiview"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("use --method sik --effectors depth or mono (one camera), --method monocular "
+                     "instead"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(refused(scenes / "monocular.yaml", "--detector truth-noise"), 1);
+  EXPECT_NE(out.find("for --method triangulate"), std::string::npos) << out;
+  EXPECT_EQ(refused(scenes / "two_people.yaml", "--method monocular --actor actor1"), 1);
+  EXPECT_NE(out.find("--actor actor1: --method monocular tracks only the first actor"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(refused(scenes / "two_people.yaml", "--actor nobody"), 1);
+  EXPECT_NE(out.find("--actor nobody: no such actor; the dataset has actor0, actor1"),
+            std::string::npos)
+      << out;
+}
+
 TEST(StressCli, SweepWritesOneRowPerPoint) {
   TempDir dir;
   write_text_atomic(

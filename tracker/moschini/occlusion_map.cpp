@@ -18,6 +18,8 @@ cv::Mat plate_regions(const cv::Mat& plate, const OcclusionOptions& o) {
   const int cell = o.cell_px;
   const cv::Size cells((plate.cols + cell - 1) / cell, (plate.rows + cell - 1) / cell);
   cv::Mat small, lab, grey, edges, edge_cells;
+  // Fewer cells than colours (a tiny image): nothing to cluster, the plate is one region.
+  if (cells.area() < o.colour_classes) return cv::Mat(cells, CV_32S, cv::Scalar(1));
   cv::resize(plate, small, cells, 0, 0, cv::INTER_AREA);
   small.convertTo(small, CV_32FC3, 1.0 / 255);
   cv::cvtColor(small, lab, cv::COLOR_BGR2Lab);

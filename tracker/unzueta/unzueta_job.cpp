@@ -179,7 +179,18 @@ class Pipeline {
       }
     }
     for (size_t i = 0; i < cameras_.size(); ++i) {
-      trackers_[i].initialize(images[i].bgr, images[i].silhouette, regions[i]);
+      try {
+        trackers_[i].initialize(images[i].bgr, images[i].silhouette, regions[i]);
+      } catch (const Error& e) {
+        throw Error(
+            "frame " + std::to_string(f) + ", " + camera(cameras_[i]).name + ": " + e.what() +
+            (options_.init == InitMethod::gt
+                 ? " (--init gt: the part labels show none of the parts there; is the person in "
+                   "its view?)"
+                 : " (--init auto: the person must start in the calibration posture, hands "
+                   "raised beside the head, facing " +
+                       camera(cameras_[primary]).name + "; --init gt starts from the labels)"));
+      }
     }
     // The body SIK solves.
     if (truth) {

@@ -100,5 +100,24 @@ TEST(OcclusionMap, NothingIsBlockedWhenEveryCameraSeesTheBody) {
   }
 }
 
+// Images smaller than the colour classes' cells (a 1x1 or 8x6 camera) give a plate of one region
+// instead of asking k-means for more clusters than cells.
+TEST(OcclusionMap, ATinyPlateIsOneRegion) {
+  const PillarScene s;
+  for (const cv::Size size : {cv::Size(1, 1), cv::Size(8, 6), cv::Size(13, 3)}) {
+    std::vector<Camera> cameras = s.cameras;
+    std::vector<cv::Mat> plates, masks;
+    for (Camera& c : cameras) {
+      c.width = size.width;
+      c.height = size.height;
+      plates.emplace_back(size, CV_8UC3, cv::Scalar(150, 150, 150));
+      masks.emplace_back(size, CV_8UC1, cv::Scalar(255));
+    }
+    OcclusionMap map(cameras, plates);
+    map.observe(place(s.surface, s.model.geometry(s.pose)), masks);
+    EXPECT_EQ(cv::countNonZero(map.blocked(0)), 0) << size;
+  }
+}
+
 }  // namespace
 }  // namespace simcap::tracker

@@ -443,6 +443,10 @@ TEST(BenchTrack, ReportsStagesRunsAndTheMedianRate) {
               0.11);  // each printed to 0.1
   EXPECT_NE(run_simcap("bench track " + dataset().string() + " --repeat 0", &log), 0);
   EXPECT_NE(run_simcap("bench track " + dataset().string() + " --frames 0", &log), 0);
+  // An --actor the dataset lacks is refused as by `simcap track` (it was ignored).
+  EXPECT_EQ(run_simcap("bench track " + dataset().string() + " --actor actor1 --repeat 1", &log),
+            1);
+  EXPECT_NE(log.find("--actor actor1: no such actor"), std::string::npos) << log;
 }
 
 }  // namespace

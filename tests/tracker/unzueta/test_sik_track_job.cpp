@@ -270,5 +270,28 @@ TEST(SikTrackJob, NamesAMissingEndEffector) {
   EXPECT_FALSE(std::filesystem::exists(tmp / "out" / "joints3d.csv"));
 }
 
+// A camera where no part can start names the frame, the camera and what --init needed there.
+TEST(SikTrackJob, ACameraWhereNoPartStartsIsNamed) {
+  testing::TempDir dir;
+  const std::string data = (dir / "tiny").string();
+  std::string log;
+  // 4x3 images: the person covers fewer labelled pixels than a part needs.
+  ASSERT_EQ(
+      testing::run_simcap(std::string("render ") + SIMCAP_SOURCE_DIR + "/scenes/studio4.yaml -o " +
+                              data + " --frames 1 -q --set rig.resolution=[4,3]",
+                          &log),
+      0)
+      << log;
+  EXPECT_EQ(testing::run_simcap("track " + data + " -o " + (dir / "t").string() +
+                                    " --method sik --effectors multiview -q",
+                                &log),
+            1);
+  EXPECT_NE(log.find("frame 0, cam00: CFOF: no body part could start in this camera (--init gt: "
+                     "the part labels show none of the parts there; is the person in its view?)"),
+            std::string::npos)
+      << log;
+  EXPECT_FALSE(std::filesystem::exists(dir / "t"));
+}
+
 }  // namespace
 }  // namespace simcap
