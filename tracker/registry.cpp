@@ -7,6 +7,7 @@
 #include "core/atomic_file.h"
 #include "core/dataset_actors.h"
 #include "core/error.h"
+#include "core/track_source.h"
 #include "tracker/common/track_folder.h"
 
 namespace simcap::tracker {
@@ -235,6 +236,7 @@ TrackSummary track_dataset(const fs::path& dataset, const fs::path& out,
   if (chosen.actors().size() > 1) {
     write_text_atomic(folder.path() / kTrackActorFile, chosen.actors()[chosen.actor()] + "\n");
   }
+  write_text_atomic(folder.path() / kTrackDatasetFile, dataset_fingerprint(dataset) + "\n");
   folder.commit();
   summary.track = out;
   return summary;

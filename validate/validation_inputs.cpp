@@ -9,6 +9,7 @@
 #include "core/dataset_actors.h"
 #include "core/error.h"
 #include "core/joint_track.h"
+#include "core/track_source.h"
 #include "models/humanoid.h"
 #include "validate/visibility.h"
 
@@ -217,6 +218,7 @@ double scene_fps(const fs::path& scene_file) {
 
 ValidationInputs load_validation_inputs(const fs::path& dataset, const fs::path& track) {
   check_folders(dataset, track);
+  check_track_source(dataset, track);
   ValidationInputs out;
   out.dataset = dataset;
   out.track = track;

@@ -128,6 +128,15 @@ TEST(LoopCli, RendersTracksAndValidates) {
   const auto json = nlohmann::json::parse(read_text(dir / "loop" / "report" / "metrics.json"));
   EXPECT_EQ(json["frame_count"], 4);
   EXPECT_TRUE(json["mpjpe_mm"].is_number());
+  // The track records its dataset: validating it against another one is refused.
+  testing::write_synthetic_dataset(dir / "other");
+  EXPECT_EQ(run_simcap("validate " + quoted(dir / "other") + " " + quoted(dir / "loop" / "track") +
+                           " -o " + quoted(dir / "wrong") + " -q --no-media",
+                       &out),
+            1);
+  EXPECT_NE(out.find("dataset.txt:1: the track was made from another dataset"), std::string::npos)
+      << out;
+  EXPECT_FALSE(fs::exists(dir / "wrong"));
   // A second run replaces the first one's dataset.
   EXPECT_EQ(run_simcap("loop " + quoted(scene) + " -o " + quoted(dir / "loop") +
                            " --frames 3 --no-media" + kSmall,

@@ -8,6 +8,7 @@
 #include "core/csv.h"
 #include "core/error.h"
 #include "core/joint_track.h"
+#include "core/track_source.h"
 #include "tracker/common/dataset.h"
 #include "tracker/unzueta/gesture_report.h"
 
@@ -43,6 +44,7 @@ GestureCorpus load_gesture_corpus(const GestureSource& source, double smooth_sig
   if (!fs::is_regular_file(joints)) {
     throw_input_error(joints, 0, "", "missing; expected a track written by simcap track");
   }
+  check_track_source(source.dataset, source.track);
   GestureCorpus c;
   c.name = source.track.string();
   c.fps = Dataset(source.dataset).fps();
