@@ -123,6 +123,7 @@ std::string loop_summary_text(const LoopResult& r) {
                 "track", r.track_s, r.track.frames / r.track_s, r.track.reinitializations,
                 r.track.reinitializations == 1 ? "" : "s");
   s += buf;
+  s += without_person_warning(r.track);
   std::snprintf(buf, sizeof buf, "  %-10s %7.1f s\n", "validate", r.validate_s);
   s += buf;
   s += "metrics:\n" + metrics_summary_text(r.validate.evaluation);

@@ -49,6 +49,7 @@ void add_track(CLI::App& app, Action& action) {
                      s.frames, s.seconds, s.frames / std::max(s.seconds, 1e-9), s.reinitializations,
                      s.track.string().c_str());
       }
+      std::fputs(without_person_warning(s).c_str(), stderr);
       return 0;
     };
   });

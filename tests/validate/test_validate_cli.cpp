@@ -182,6 +182,28 @@ TEST(LoopCli, DetectorTruthNoiseIsTriangulated) {
   EXPECT_FALSE(fs::exists(dir / "none"));
 }
 
+// A person who walks out of every camera's view leaves frames the tracker only holds a pose
+// for: the loop says how many, instead of scoring them as if they were tracked.
+TEST(LoopCli, WarnsOfFramesWithoutThePerson) {
+  TempDir dir;
+  std::string out;
+  const fs::path scene = fs::path(SIMCAP_SOURCE_DIR) / "scenes" / "studio4.yaml";
+  ASSERT_EQ(run_simcap("loop " + quoted(scene) + " -o " + quoted(dir / "loop") +
+                           " --frames 45 --no-media --set 'actors[0].motion={procedural: "
+                           "walk_path, speed: 3, radius: 4, duration: 4}'" +
+                           kSmall,
+                       &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("warning: no person in "), std::string::npos) << out;
+  ASSERT_EQ(run_simcap("loop " + quoted(scene) + " -o " + quoted(dir / "stays") +
+                           " --frames 3 --no-media" + kSmall,
+                       &out),
+            0)
+      << out;
+  EXPECT_EQ(out.find("warning:"), std::string::npos) << out;
+}
+
 // What the scene decides -- its cameras, its actors -- refuses a tracker before anything is
 // rendered, with the refusal `simcap track` gives.
 TEST(LoopCli, RefusesATrackerTheSceneCannotFeedBeforeRendering) {

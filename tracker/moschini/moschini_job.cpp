@@ -363,6 +363,7 @@ TrackSummary track_moschini(const fs::path& dataset, const fs::path& out,
   std::optional<BodyDimensions> dims;
   std::optional<BodySurface> surface;
   char buf[256];
+  int without_person = 0, first_without_person = -1;
   const TrackSummary run = run_moschini(
       dataset, options, options.max_frames,
       [&](const Dataset& ds, const Observation& obs, const TrackStep& step,
@@ -382,6 +383,7 @@ TrackSummary track_moschini(const fs::path& dataset, const fs::path& out,
                       step.icp.mean_distance_m * 1000, step.icp.inlier_fraction,
                       step.outside_fraction, obs.gate.components, obs.gate.dropped_voxels);
         timings.out() << buf;
+        if (obs.hull.count == 0 && without_person++ == 0) first_without_person = obs.frame;
         if (step.reinitialized) reinit.out() << obs.frame << "," << step.reason << "\n";
         if (std::find(options.inspect.begin(), options.inspect.end(), obs.frame) !=
             options.inspect.end()) {
@@ -435,6 +437,8 @@ TrackSummary track_moschini(const fs::path& dataset, const fs::path& out,
   write_joint_track(out / "joints3d.csv", track);
   write_angle_track(out / "angles.csv", angles);
   TrackSummary summary = run;
+  summary.frames_without_person = without_person;
+  summary.first_frame_without_person = first_without_person;
   summary.track = out;
   return summary;
 }
