@@ -171,6 +171,11 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
                   "overlapping parts for the self-occlusion rule (0.5: the median)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  cmd->add_option("--surface-thickness", o.sik.surface_thickness,
+                  "sik --effectors depth: a part's surface lies at most this far (metres) behind "
+                  "its nearest pixels (0: off)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_option("--consensus-px", o.sik.multiview_consensus_px,
                   "sik --effectors multiview: triangulate each part from the cameras whose tracks "
                   "agree within this many pixels (RANSAC over camera pairs; 0: every tracking "

@@ -22,9 +22,13 @@ std::optional<double> depth_quantile(const cv::Mat& depth, const std::vector<cv:
 }
 
 std::optional<PartDepth> part_depth(const cv::Mat& depth, const std::vector<cv::Point>& points,
-                                    double surface_quantile, double order_quantile) {
-  const auto surface = depth_quantile(depth, points, surface_quantile);
+                                    double surface_quantile, double order_quantile,
+                                    double thickness) {
+  auto surface = depth_quantile(depth, points, surface_quantile);
   if (!surface) return std::nullopt;
+  if (thickness > 0) {
+    surface = std::min(*surface, *depth_quantile(depth, points, kNearQuantile) + thickness);
+  }
   return PartDepth{*surface, *depth_quantile(depth, points, order_quantile)};
 }
 

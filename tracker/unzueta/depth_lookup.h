@@ -23,8 +23,12 @@ std::optional<double> depth_quantile(const cv::Mat& depth, const std::vector<cv:
 struct PartDepth {
   double surface = 0, order = 0;
 };
+// With a `thickness` > 0 the surface lies at most that far behind the part's nearest pixels
+// (their kNearQuantile): deeper pixels are of something behind the part.
+inline constexpr double kNearQuantile = 0.1;
 std::optional<PartDepth> part_depth(const cv::Mat& depth, const std::vector<cv::Point>& points,
-                                    double surface_quantile, double order_quantile);
+                                    double surface_quantile, double order_quantile,
+                                    double thickness = 0);
 
 // Grid pixels of `mask` (CV_8UC1) within `half` px of `centre` (a square), every `step` px.
 std::vector<cv::Point> mask_samples(const cv::Mat& mask, cv::Point2d centre, int half, int step);

@@ -386,7 +386,8 @@ class Pipeline {
                                   : t.surface(e);
         const bool pelvis = e == Effector::pelvis;
         z = part_depth(images[0].depth, at, pelvis ? 0.5 : options_.surface_quantile,
-                       pelvis ? 0.5 : options_.occlusion_quantile);
+                       pelvis ? 0.5 : options_.occlusion_quantile,
+                       pelvis ? 0.0 : options_.surface_thickness);
       }
       if (z) {
         order_z_[i] =

@@ -122,6 +122,13 @@ TEST(DepthLookup, PartDepthReadsTheSurfaceAndTheOrderAtTheirOwnQuantiles) {
   EXPECT_FLOAT_EQ(z->surface, 2.0f);
   EXPECT_FLOAT_EQ(z->order, 2.3f);
   EXPECT_FALSE(part_depth(depth, {{-1, 0}}, 0.1, 0.5));
+  // With a thickness the median is kept only within it of the nearest tenth: 2.0 + 0.05 m.
+  const auto thick = part_depth(depth, at, 0.5, 0.5, 0.05);
+  EXPECT_FLOAT_EQ(thick->surface, 2.05f);
+  EXPECT_FLOAT_EQ(thick->order, 2.3f);
+  // A part as deep as its pixels spread (a hand seen flat, 2.30-2.33 m) keeps its median.
+  depth(cv::Rect(0, 0, 10, 2)).setTo(2.33f);
+  EXPECT_FLOAT_EQ(part_depth(depth, at, 0.5, 0.5, 0.05)->surface, 2.3f);
 }
 
 TEST(PointKalman, MatchesTheFilterEquationsByHand) {
