@@ -166,6 +166,16 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
                   "surface (0: the nearest, 0.5: the median)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  cmd->add_option("--occlusion-quantile", o.sik.occlusion_quantile,
+                  "sik --effectors depth: quantile of the depths under a tracked part that orders "
+                  "overlapping parts for the self-occlusion rule (0.5: the median)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_option("--surface-thickness", o.sik.surface_thickness,
+                  "sik --effectors depth: a part's surface lies at most this far (metres) behind "
+                  "its nearest pixels (0: off)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_option("--consensus-px", o.sik.multiview_consensus_px,
                   "sik --effectors multiview: triangulate each part from the cameras whose tracks "
                   "agree within this many pixels (RANSAC over camera pairs; 0: every tracking "
@@ -183,10 +193,15 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
              o.sik.tracking.refind_reach[tracker::index_of(e)] = reach;
            }
          },
-         "sik --effectors depth|mono|multiview: re-find a hand lost for 30 frames at the far end "
-         "of its skin blob within this reach of its shoulder, a fraction of the person's height "
-         "(0.44: shoulder to fingertip; default 0: off)")
+         "sik --effectors depth|mono|multiview: re-find a hand lost for --refind-patience frames "
+         "at the far end of its skin blob within this reach of its shoulder, a fraction of the "
+         "person's height (0.44: shoulder to fingertip; default 0: off)")
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--refind-patience", o.sik.tracking.refind_patience,
+                  "sik: frames in a row a hand is not tracked before --refind-reach searches "
+                  "for it")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
   cmd->add_flag("--middle-targets", o.sik.middle_targets,
                 "sik --effectors gt: also give SIK the truth's elbows and knees (each limb swivels "
                 "toward them)");

@@ -51,7 +51,8 @@ void CameraTracker::refind(Effector e, const CfofFrame& frame, const cv::Mat& si
   CfofTracker& t = parts_[i];
   untracked_[i] = t.state() == CfofState::tracking ? 0 : untracked_[i] + 1;
   const double reach = params_.refind_reach[i] * person_px_;
-  if (reach <= 0 || !root || untracked_[i] < params_.refind_patience) return;
+  // A part that never learnt its colours has nothing to be found by.
+  if (reach <= 0 || !root || !t.learned() || untracked_[i] < params_.refind_patience) return;
   // The window holds a hand at the reach's end whole, so that a longer blob (an arm beyond
   // reach) is not cut to one that ends within it.
   const double length = params_.anchor_length[i] * person_px_;

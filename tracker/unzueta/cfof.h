@@ -88,6 +88,8 @@ class CfofTracker {
   cv::Mat colour_probability(const CfofFrame& frame, cv::Rect roi) const {
     return colour_.back_project(frame.hsv, roi, frame.mask);
   }
+  // Whether the part learnt its colours (its first ROI held some of it).
+  bool learned() const { return colour_.learned(); }
   // The first nSelect features (the selection the ROI is centred on).
   std::vector<cv::Point2f> selection() const;
   const CfofParams& params() const { return params_; }

@@ -21,6 +21,17 @@ std::optional<double> depth_quantile(const cv::Mat& depth, const std::vector<cv:
   return z[k];
 }
 
+std::optional<PartDepth> part_depth(const cv::Mat& depth, const std::vector<cv::Point>& points,
+                                    double surface_quantile, double order_quantile,
+                                    double thickness) {
+  auto surface = depth_quantile(depth, points, surface_quantile);
+  if (!surface) return std::nullopt;
+  if (thickness > 0) {
+    surface = std::min(*surface, *depth_quantile(depth, points, kNearQuantile) + thickness);
+  }
+  return PartDepth{*surface, *depth_quantile(depth, points, order_quantile)};
+}
+
 std::vector<cv::Point> mask_samples(const cv::Mat& mask, cv::Point2d centre, int half, int step) {
   std::vector<cv::Point> out;
   const int cx = static_cast<int>(std::lround(centre.x)),

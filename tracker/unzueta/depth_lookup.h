@@ -16,6 +16,20 @@ namespace simcap::tracker {
 std::optional<double> depth_quantile(const cv::Mat& depth, const std::vector<cv::Point>& points,
                                      double quantile);
 
+// A part's two readings of the same pixels: `surface` (the `surface_quantile`) places its 3D
+// point, `order` (the `order_quantile`) orders it against overlapping parts for the occlusion
+// rule (§3.3.1). A hand seen end-on over its forearm: its nearest surface is the hand, but which
+// blob covers which is a question about the blob as a whole. nullopt when no depth is finite.
+struct PartDepth {
+  double surface = 0, order = 0;
+};
+// With a `thickness` > 0 the surface lies at most that far behind the part's nearest pixels
+// (their kNearQuantile): deeper pixels are of something behind the part.
+inline constexpr double kNearQuantile = 0.1;
+std::optional<PartDepth> part_depth(const cv::Mat& depth, const std::vector<cv::Point>& points,
+                                    double surface_quantile, double order_quantile,
+                                    double thickness = 0);
+
 // Grid pixels of `mask` (CV_8UC1) within `half` px of `centre` (a square), every `step` px.
 std::vector<cv::Point> mask_samples(const cv::Mat& mask, cv::Point2d centre, int half, int step);
 

@@ -43,10 +43,19 @@ struct SikTrackOptions {
   tracker::CameraTrackerParams tracking;
   // --effectors depth reads a part's surface at this quantile of the depths under its pixels
   // (0: the nearest). A hand pointing at the camera is seen end-on over its forearm, whose
-  // median depth lies 20-35 cm behind the hand; 0.1 fixes that (gest1: 45.4 -> 43.4 mm) but
-  // the changed depths change the occlusion rule's choices and lose a hand for good on gest2
-  // and gest3 (UNZUETA.md), so the median stays.
+  // median depth lies 20-35 cm behind the hand; 0.1 fixes that (gest1: 45.4 -> 43.4 mm).
   double surface_quantile = 0.5;
+  // --effectors depth: the occlusion rule (§3.3.1) orders overlapping parts by the depth read at
+  // this quantile instead (the same part centre, from another surface depth). Which of two
+  // overlapping blobs covers the other is a question about the blobs as a whole; the nearest
+  // surface of a hand changed the rule's choices and lost hands for good (UNZUETA.md).
+  double occlusion_quantile = 0.5;
+  // --effectors depth: a part's surface lies at most this far (metres) behind its nearest pixels
+  // (0: off): the median where the pixels are about as deep as the part, the near surface where
+  // they run far behind it (the end-on hand). With the re-finding (0.05, refind 0.44, patience
+  // 10) the gesture corpus' spotting F1 goes 0.45 -> 0.88, but the walks from four cameras lose
+  // 12 (studio4) and 22 mm (hop4) on average, so it is off (UNZUETA.md).
+  double surface_thickness = 0.0;
   // --effectors multiview: a part is triangulated from the cameras whose tracks agree within this
   // many pixels (part_consensus.h; 0: every tracking camera in one DLT, as before), and when
   // `multiview_reseed`, a camera that disagrees, predicts the part hidden or has lost it is moved

@@ -127,7 +127,10 @@ class Pipeline {
     return im;
   }
 
+  // Each part's distance from camera c for the occlusion rule: with --effectors depth the
+  // lifted centre at the occlusion quantile, else the previous centre's.
   std::array<double, kEffectorCount> part_depths(int c) const {
+    if (options_.effectors == EffectorSource::depth) return order_z_;
     std::array<double, kEffectorCount> z;
     for (Effector e : kEffectors) z[index_of(e)] = camera(c).to_camera(centre_[index_of(e)]).z();
     return z;
@@ -231,6 +234,8 @@ class Pipeline {
       }
     }
     centre_ = posture;
+    for (Effector e : kEffectors)
+      order_z_[index_of(e)] = camera(cameras_[0]).to_camera(centre_[index_of(e)]).z();
     if (options_.effectors == EffectorSource::mono) {
       for (Effector e : kEffectors)
         mono_depth_[index_of(e)] = camera(cameras_[0]).to_camera(centre_[index_of(e)]).z();
@@ -362,7 +367,9 @@ class Pipeline {
     }
   }
 
-  std::array<Eigen::Vector3d, kEffectorCount> lift(const std::vector<Images>& images) const {
+  // The parts' centres this frame; with --effectors depth also their occlusion depths
+  // (order_z_), which a part that is not tracked keeps.
+  std::array<Eigen::Vector3d, kEffectorCount> lift(const std::vector<Images>& images) {
     std::array<Eigen::Vector3d, kEffectorCount> out = centre_;
     for (Effector e : kEffectors) {
       const int i = index_of(e);
@@ -379,19 +386,25 @@ class Pipeline {
         out[i] = point_at_depth(camera(c), px, mono_depth_[i]);
         continue;
       }
-      std::optional<double> z;
+      std::optional<PartDepth> z;
+      const Eigen::Vector3d ray = camera(c).unproject({px.x, px.y});
+      const double behind =
+          parts_->depth_behind_surface(e, rotation_[parts_->joint(e)], ray, e == Effector::pelvis);
       if (s == CfofState::tracking) {
         const std::vector<cv::Point> at =
             e == Effector::pelvis ? mask_samples(images[0].silhouette, px,
                                                  static_cast<int>(kPelvisWindow * t.person_px()), 2)
                                   : t.surface(e);
-        z = depth_quantile(images[0].depth, at,
-                           e == Effector::pelvis ? 0.5 : options_.surface_quantile);
+        const bool pelvis = e == Effector::pelvis;
+        z = part_depth(images[0].depth, at, pelvis ? 0.5 : options_.surface_quantile,
+                       pelvis ? 0.5 : options_.occlusion_quantile,
+                       pelvis ? 0.0 : options_.surface_thickness);
       }
-      const Eigen::Vector3d ray = camera(c).unproject({px.x, px.y});
-      const double behind =
-          parts_->depth_behind_surface(e, rotation_[parts_->joint(e)], ray, e == Effector::pelvis);
-      out[i] = z ? centre_behind_surface(camera(c), px, *z, behind)
+      if (z) {
+        order_z_[i] =
+            camera(c).to_camera(centre_behind_surface(camera(c), px, z->order, behind)).z();
+      }
+      out[i] = z ? centre_behind_surface(camera(c), px, z->surface, behind)
                  : point_at_depth(camera(c), px, camera(c).to_camera(centre_[i]).z());
     }
     return out;
@@ -433,6 +446,7 @@ class Pipeline {
   std::array<Eigen::Vector3d, kEffectorCount> centre_{};
   mutable std::array<std::vector<bool>, kEffectorCount> agreeing_;
   std::array<double, kEffectorCount> mono_depth_{};
+  std::array<double, kEffectorCount> order_z_{};  // --effectors depth: see part_depths
   Eigen::Vector3d pelvis_offset_ = Eigen::Vector3d::Zero();
   std::vector<Eigen::Quaterniond> rotation_;
   std::vector<Eigen::Vector3d> position_;

@@ -125,6 +125,29 @@ TEST(CameraTracker, HandBeyondTheArmsReachIsNotReFound) {
   EXPECT_NE(track.back().first, CfofState::tracking);
 }
 
+// A hand whose first ROI held none of the person learnt no colours: it stays lost, and the
+// re-finding, which searches by them, passes it over (it used to throw in OpenCV's
+// calcBackProject on the empty histogram: hop4 from cam02 with --refind-reach).
+TEST(CameraTracker, HandWithoutColoursIsNotSearchedFor) {
+  const CameraTrackerParams params = refinding();
+  CameraTracker tracker(params);
+  InitialRegions regions;
+  regions.person_px = kPersonPx;
+  regions.roi[index_of(Effector::head)] = cv::Rect2d(136, 16, 48, 48);
+  regions.roi[index_of(Effector::left_hand)] = cv::Rect2d(260, 260, 24, 24);  // the floor
+  const Frame hanging = person(false);
+  tracker.initialize(hanging.bgr, hanging.silhouette, regions);
+  ASSERT_EQ(tracker.state(Effector::left_hand), CfofState::lost);
+  std::array<double, kEffectorCount> depth;
+  depth.fill(std::numeric_limits<double>::quiet_NaN());
+  std::array<std::optional<cv::Point2d>, kEffectorCount> root;
+  root[index_of(Effector::left_hand)] = cv::Point2d(200, 97);
+  for (int f = 0; f < params.refind_patience + 3; ++f) {
+    ASSERT_NO_THROW(tracker.track(hanging.bgr, hanging.silhouette, depth, root)) << "frame " << f;
+  }
+  EXPECT_EQ(tracker.state(Effector::left_hand), CfofState::lost);
+}
+
 // Multiview re-seeding (CameraTracker::correct): the hand lost in the swing is moved to where
 // the other cameras put it and is followed there; without the correction it is not.
 TEST(CameraTracker, CorrectedHandIsFollowedWhereOtherCamerasPutIt) {

@@ -108,6 +108,29 @@ TEST(DepthLookup, QuantileAgainstASortSkippingEmptyAndOutsidePixels) {
   EXPECT_FALSE(depth_quantile(depth, {{0, 9}, {-1, 0}}, 0.5));
 }
 
+// A hand pointing at the camera: 20 px of hand at 2.0 m over 60 px of forearm at 2.3 m. Its
+// 3D point is read on the hand, its place in the occlusion order on the whole blob.
+TEST(DepthLookup, PartDepthReadsTheSurfaceAndTheOrderAtTheirOwnQuantiles) {
+  cv::Mat depth(8, 10, CV_32FC1, cv::Scalar(2.3f));
+  depth(cv::Rect(0, 0, 10, 2)).setTo(2.0f);
+  std::vector<cv::Point> at;
+  for (int y = 0; y < depth.rows; ++y) {
+    for (int x = 0; x < depth.cols; ++x) at.emplace_back(x, y);
+  }
+  const auto z = part_depth(depth, at, 0.1, 0.5);
+  ASSERT_TRUE(z);
+  EXPECT_FLOAT_EQ(z->surface, 2.0f);
+  EXPECT_FLOAT_EQ(z->order, 2.3f);
+  EXPECT_FALSE(part_depth(depth, {{-1, 0}}, 0.1, 0.5));
+  // With a thickness the median is kept only within it of the nearest tenth: 2.0 + 0.05 m.
+  const auto thick = part_depth(depth, at, 0.5, 0.5, 0.05);
+  EXPECT_FLOAT_EQ(thick->surface, 2.05f);
+  EXPECT_FLOAT_EQ(thick->order, 2.3f);
+  // A part as deep as its pixels spread (a hand seen flat, 2.30-2.33 m) keeps its median.
+  depth(cv::Rect(0, 0, 10, 2)).setTo(2.33f);
+  EXPECT_FLOAT_EQ(part_depth(depth, at, 0.5, 0.5, 0.05)->surface, 2.3f);
+}
+
 TEST(PointKalman, MatchesTheFilterEquationsByHand) {
   const PointKalmanNoise noise{2.0, 1.0};
   PointKalman k({10, 20}, noise, 100.0, {1, -2});
