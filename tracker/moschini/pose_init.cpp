@@ -153,7 +153,7 @@ BodyDimensions dimensions_from_joints(const NamedJoints& j, const std::string& s
   try {
     d.validate();
   } catch (const Error& e) {
-    throw Error(source + ": " + e.what());
+    throw Error(source + ": the body there is one Moschini's stick model cannot hold: " + e.what());
   }
   return d;
 }

@@ -192,12 +192,20 @@ void BodyDimensions::validate() const {
                   "' must be a length in (0.01, 2) m, got " + std::to_string(value));
     }
   }
-  const std::pair<const char*, double> fractions[] = {
-      {"d_s", d_s}, {"d_h", d_h}, {"skullbase_fraction", skullbase_fraction}};
-  for (const auto& [name, value] : fractions) {
+  struct Fraction {
+    const char* name;
+    const char* meaning;
+    double value;
+  };
+  const Fraction fractions[] = {
+      {"d_s", "the shoulders' height above the trunk's centre, in trunk half-lengths", d_s},
+      {"d_h", "the hips' half-spacing, in shoulder half-widths", d_h},
+      {"skullbase_fraction", "the skull base's place from the neck to the crown",
+       skullbase_fraction}};
+  for (const auto& [name, meaning, value] : fractions) {
     if (!(value >= 0.0 && value <= 1.5)) {
-      throw Error(std::string("body dimension '") + name +
-                  "' must be a fraction in [0, 1.5], got " + std::to_string(value));
+      throw Error(std::string("body dimension '") + name + "' (" + meaning +
+                  ") must be a fraction in [0, 1.5], got " + std::to_string(value));
     }
   }
   const std::pair<const char*, double> offsets[] = {{"root_above_hips", root_above_hips},

@@ -2,6 +2,7 @@
 
 #include <random>
 
+#include "core/error.h"
 #include "models/humanoid.h"
 #include "models/pose.h"
 #include "tracker/moschini/pose_init.h"
@@ -127,6 +128,28 @@ TEST(StickModel, JointRotationsAreTheHumanoidsLocalRotations) {
     // humanoid's neutral foot is turned.
     const double tolerance = name.ends_with("talocrural") ? 0.12 : 0.05;
     EXPECT_LT(std::acos(std::clamp((q[k] * bone).dot(truth * bone), -1.0, 1.0)), tolerance) << name;
+  }
+}
+
+// A body the sticks cannot hold (shoulders raised far above the trunk) is refused in terms of
+// the body, naming where it came from.
+TEST(StickModel, ABodyTheSticksCannotHoldIsNamedInWordsOfTheBody) {
+  const Skeleton s = build_humanoid();
+  const auto positions = joint_positions(s, Pose::neutral(s));
+  NamedJoints joints;
+  for (int i = 0; i < s.size(); ++i) joints[s[i].name] = positions[i];
+  for (const char* side : {"l_shoulder", "r_shoulder"}) joints[side].y() += 0.6;
+  try {
+    dimensions_from_joints(joints, "gt/joints3d.csv");
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(
+        what.find("gt/joints3d.csv: the body there is one Moschini's stick model cannot hold"),
+        std::string::npos)
+        << what;
+    EXPECT_NE(what.find("the shoulders' height above the trunk's centre"), std::string::npos)
+        << what;
   }
 }
 
