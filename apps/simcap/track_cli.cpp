@@ -14,7 +14,7 @@ namespace simcap::cli {
 namespace {
 
 // Sweep keys and the options they set (sweep files name the voxel and noise with their unit).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 36> kSweepKeys{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 37> kSweepKeys{{
     {"method", "--method"},
     {"actor", "--actor"},
     {"silhouettes", "--silhouettes"},
@@ -44,6 +44,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 36> kSweepKe
     {"mirror_groups", "--mirror-groups"},
     {"hand_depths", "--hand-depths"},
     {"depth_groups", "--depth-groups"},
+    {"limb_end_depths", "--limb-end-depths"},
     {"shading_sigma", "--shading-sigma"},
     {"floor", "--floor"},
     {"smooth", "--smooth"},
@@ -283,6 +284,13 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
                   "monocular: depths along the camera ray at which an arm is proposed reaching "
                   "a hand-coloured image region no hand of the best pose explains (H5 from the "
                   "image), 0: off")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  cmd->add_option("--limb-end-depths", m.filter.limb_end_depths,
+                  "monocular: depths along the camera ray at which a hand or foot is proposed "
+                  "reaching a geodesic extremity of the silhouette (seen from the trunk) that no "
+                  "end of the best pose explains, claimed by the nearest free hand or foot "
+                  "whatever its colour, 0: off")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
   cmd->add_option("--depth-groups", m.filter.depth_groups,
