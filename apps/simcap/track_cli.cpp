@@ -14,7 +14,7 @@ namespace simcap::cli {
 namespace {
 
 // Sweep keys and the options they set (sweep files name the voxel and noise with their unit).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 37> kSweepKeys{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 38> kSweepKeys{{
     {"method", "--method"},
     {"actor", "--actor"},
     {"silhouettes", "--silhouettes"},
@@ -45,6 +45,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 37> kSweepKe
     {"hand_depths", "--hand-depths"},
     {"depth_groups", "--depth-groups"},
     {"limb_end_depths", "--limb-end-depths"},
+    {"limb_end_legs", "--limb-end-legs"},
     {"shading_sigma", "--shading-sigma"},
     {"floor", "--floor"},
     {"smooth", "--smooth"},
@@ -287,12 +288,15 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
   cmd->add_option("--limb-end-depths", m.filter.limb_end_depths,
-                  "monocular: depths along the camera ray at which a hand or foot is proposed "
-                  "reaching a geodesic extremity of the silhouette (seen from the trunk) that no "
-                  "end of the best pose explains, claimed by the nearest free hand or foot "
-                  "whatever its colour, 0: off")
+                  "monocular: proposals per geodesic extremity of the silhouette (seen from the "
+                  "trunk) that no hand, foot, elbow, knee or head of the best pose explains: the "
+                  "nearest free hand or foot, whatever its colour, reaching it at its present "
+                  "depth, then at N-1 depths spread along its camera ray; 0: off")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
+  add_choice(cmd, "--limb-end-legs", m.filter.limb_end_legs, kOnOff,
+             "monocular: with --limb-end-depths, the feet are proposed reaching the silhouette's "
+             "extremities too (on), or only explain them (off)");
   cmd->add_option("--depth-groups", m.filter.depth_groups,
                   "monocular: how many particle groups, largest first, have their best pose "
                   "tested slid in depth to meet the silhouette's feet and top rows (full body), "

@@ -189,7 +189,9 @@ std::vector<State> ParticleFilter::limb_end_proposals(const State& x, const Fram
     limbs.push_back({kinematics, side, capsule});
   };
   for (int side = 0; side < 2; ++side) add(hand_capsule_[side], arms_, side);
-  for (int side = 0; side < 2; ++side) add(foot_capsule_[side], legs_, side);
+  for (int side = 0; side < 2; ++side) {
+    add(foot_capsule_[side], options_.limb_end_legs ? legs_ : nullptr, side);
+  }
   // The elbows and knees explain an extremity at them (a bent arm's elbow sticks out as far as a
   // hand does) and are never moved there.
   for (const char* joint : {"l_elbow", "r_elbow", "l_knee", "r_knee"}) {

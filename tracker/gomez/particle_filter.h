@@ -59,11 +59,15 @@ struct FilterOptions {
   int hand_depths = 2;
   // Limb ends from the silhouette (simcap's addition, for hands and feet whatever their colour):
   // the geodesic extremities of the silhouette from the best particle's trunk (silhouette_ends)
-  // that no end of that pose explains are each claimed by the nearest hand or foot that explains
-  // none (assign_ends), and that limb is proposed reaching it at this many depths along its
-  // camera ray (ArmKinematics::reach_ray, the legs' too); the poses join the pool as H4's flips
-  // do. 0 is off.
+  // that no hand, foot, elbow, knee or head of that pose explains are each claimed by the nearest
+  // hand or foot that explains none (assign_ends), and that limb is proposed reaching it: at its
+  // present depth (the ray's point nearest it), and at this many depths minus one spread along
+  // the ray's stretch it reaches (ArmKinematics::reach_point, reach_ray; the legs' too); the poses
+  // join the pool as H4's flips do. 0 is off.
   int limb_end_depths = 0;
+  // Whether the feet are moved to the extremities they claim (else they still claim them, so that
+  // a hand is not sent to a foot's extremity, but stay).
+  bool limb_end_legs = false;
   // The root's depth from the silhouette's feet and top rows (simcap's addition for the full
   // body on the floor): how many groups, largest first, have their best particle slid along the
   // ground under its camera ray to where its image extent meets those rows
