@@ -14,7 +14,7 @@ namespace simcap::cli {
 namespace {
 
 // Sweep keys and the options they set (sweep files name the voxel and noise with their unit).
-constexpr std::array<std::pair<std::string_view, std::string_view>, 36> kSweepKeys{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 38> kSweepKeys{{
     {"method", "--method"},
     {"actor", "--actor"},
     {"silhouettes", "--silhouettes"},
@@ -44,6 +44,8 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 36> kSweepKe
     {"mirror_groups", "--mirror-groups"},
     {"hand_depths", "--hand-depths"},
     {"depth_groups", "--depth-groups"},
+    {"limb_end_depths", "--limb-end-depths"},
+    {"limb_end_legs", "--limb-end-legs"},
     {"shading_sigma", "--shading-sigma"},
     {"floor", "--floor"},
     {"smooth", "--smooth"},
@@ -285,6 +287,16 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
                   "image), 0: off")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
+  cmd->add_option("--limb-end-depths", m.filter.limb_end_depths,
+                  "monocular: proposals per geodesic extremity of the silhouette (seen from the "
+                  "trunk) that no hand, foot, elbow, knee or head of the best pose explains: the "
+                  "nearest free hand or foot, whatever its colour, reaching it at its present "
+                  "depth, then at N-1 depths spread along its camera ray; 0: off")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  add_choice(cmd, "--limb-end-legs", m.filter.limb_end_legs, kOnOff,
+             "monocular: with --limb-end-depths, the feet are proposed reaching the silhouette's "
+             "extremities too (on), or only explain them (off)");
   cmd->add_option("--depth-groups", m.filter.depth_groups,
                   "monocular: how many particle groups, largest first, have their best pose "
                   "tested slid in depth to meet the silhouette's feet and top rows (full body), "

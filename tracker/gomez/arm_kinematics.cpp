@@ -34,16 +34,18 @@ std::vector<double> ray_sphere(const Eigen::Vector3d& o, const Eigen::Vector3d& 
 
 }  // namespace
 
-ArmKinematics::ArmKinematics(const BodyDofs& dofs) : dofs_(&dofs) {
+ArmKinematics::ArmKinematics(const BodyDofs& dofs, Limbs limbs) : dofs_(&dofs) {
   const Skeleton& s = dofs.skeleton();
+  const bool arms = limbs == Limbs::arms;
   for (int side = 0; side < 2; ++side) {
     const std::string p = side == 0 ? "l_" : "r_";
-    shoulder_[side] = s.require(p + "shoulder");
-    elbow_[side] = s.require(p + "elbow");
-    wrist_[side] = s.require(p + "radiocarpal");
+    shoulder_[side] = s.require(p + (arms ? "shoulder" : "hip"));
+    elbow_[side] = s.require(p + (arms ? "elbow" : "knee"));
+    wrist_[side] = s.require(p + (arms ? "radiocarpal" : "talocrural"));
     if (dofs.joint_dofs(shoulder_[side]).size() != 3 || dofs.joint_dofs(elbow_[side]).size() != 1 ||
         dofs[dofs.joint_dofs(elbow_[side])[0]].axis != 0) {
-      throw Error("arm kinematics: the " + p + "arm needs 3 shoulder DOFs and an elbow about X");
+      throw Error("limb kinematics: the " + p + (arms ? "arm" : "leg") +
+                  " needs 3 DOFs at its root joint and a hinge about X");
     }
     elbow_dof_[side] = dofs.joint_dofs(elbow_[side])[0];
     upper_[side] = s.offset(elbow_[side]);
@@ -198,13 +200,31 @@ std::vector<State> ArmKinematics::flips(const State& x,
   return out;
 }
 
+std::optional<State> ArmKinematics::reach_point(const State& x, int side,
+                                                const Eigen::Vector3d& hand,
+                                                const Eigen::Vector3d& target) const {
+  const ArmPoints arm = points(x, side);
+  // The hand point is a fixed offset in the elbow's frame (the wrist's angles stay): the arm's
+  // IK solved for it as the end of a longer forearm puts it on the target exactly.
+  const Eigen::Vector3d end =
+      fore_[side] + dofs_->pose(x).rotations[wrist_[side]].toRotationMatrix() * hand;
+  const double L2 = end.norm(), present = swivel(arm);
+  // The swivel nearest the present one that the limits allow (the shoulder's twist limits most
+  // of the circle out).
+  for (int turn = 0; turn < 15; ++turn) {
+    const double sw = present + (turn % 2 == 0 ? 1 : -1) * 0.4 * ((turn + 1) / 2);
+    State y = x;
+    const auto elbow = swivel_elbow(arm, target, sw, L2);
+    if (elbow && solve_end(y, side, *elbow, target, end)) return y;
+  }
+  return std::nullopt;
+}
+
 std::vector<State> ArmKinematics::reach_ray(const State& x, int side, const Eigen::Vector3d& hand,
                                             const Eigen::Vector3d& origin,
                                             const Eigen::Vector3d& direction, int depths) const {
   std::vector<State> out;
   const ArmPoints arm = points(x, side);
-  // The hand point is a fixed offset in the elbow's frame (the wrist's angles stay): the arm's
-  // IK solved for it as the end of a longer forearm puts it on the ray exactly.
   const Eigen::Vector3d end =
       fore_[side] + dofs_->pose(x).rotations[wrist_[side]].toRotationMatrix() * hand;
   const double L1 = upper_[side].norm(), L2 = end.norm();
@@ -213,25 +233,14 @@ std::vector<State> ArmKinematics::reach_ray(const State& x, int side, const Eige
   const std::vector<double> ts = ray_sphere(origin, direction, arm.shoulder, 0.98 * (L1 + L2));
   if (ts.empty() || ts[1] <= 0 || depths <= 0) return out;
   const double t0 = std::max(ts[0], 0.0), t1 = ts[1];
-  // Per depth, the swivel nearest the present one that the limits allow (the shoulder's twist
-  // limits most of the circle out). The limits allow only part of the stretch (a hand far
-  // behind the shoulder is out of them): it is sampled four times as densely as asked, and as
-  // many of the allowed depths as asked are kept, spread over them.
-  const double present = swivel(arm);
+  // The limits allow only part of the stretch (a hand far behind the shoulder is out of them): it
+  // is sampled four times as densely as asked, and as many of the allowed depths as asked are
+  // kept, spread over them.
   std::vector<State> allowed;
   const int samples = 4 * depths;
   for (int k = 0; k < samples; ++k) {
     const Eigen::Vector3d target = origin + (t0 + (k + 0.5) / samples * (t1 - t0)) * direction;
-    for (int turn = 0; turn < 15; ++turn) {
-      const double sw = present + (turn % 2 == 0 ? 1 : -1) * 0.4 * ((turn + 1) / 2);
-      State y = x;
-      const auto elbow = swivel_elbow(arm, target, sw, L2);
-      const bool ok = elbow && solve_end(y, side, *elbow, target, end);
-      if (ok) {
-        allowed.push_back(std::move(y));
-        break;
-      }
-    }
+    if (auto y = reach_point(x, side, hand, target)) allowed.push_back(std::move(*y));
   }
   const int n = static_cast<int>(allowed.size());
   for (int k = 0; k < std::min(n, depths); ++k) {

@@ -19,10 +19,15 @@ struct ArmPoints {
   Eigen::Matrix3d parent;                  // world rotation of the shoulder's parent joint
 };
 
+// The legs have the arms' structure (the hip a ball joint, the knee a hinge about X): the same
+// solver reaches a foot to a camera ray; shoulder/elbow/wrist below read hip/knee/ankle for them.
+enum class Limbs { arms, legs };
+
 class ArmKinematics {
  public:
-  // The arms of `dofs` (l_/r_ shoulder with 3 DOFs, elbow with 1). Keeps a reference.
-  explicit ArmKinematics(const BodyDofs& dofs);
+  // The arms (or legs) of `dofs` (l_/r_ shoulder or hip with 3 DOFs, elbow or knee with 1 about
+  // X). Keeps a reference.
+  explicit ArmKinematics(const BodyDofs& dofs, Limbs limbs = Limbs::arms);
 
   // side 0: left, 1: right.
   ArmPoints points(const State& x, int side) const;
@@ -54,6 +59,12 @@ class ArmKinematics {
   std::vector<State> reach_ray(const State& x, int side, const Eigen::Vector3d& hand,
                                const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                                int depths) const;
+
+  // The pose of `side`'s limb that puts its hand point (as for reach_ray) at `target` (world),
+  // the elbow at the swivel nearest its present one that the limits allow; none when no swivel
+  // does or the target is out of reach.
+  std::optional<State> reach_point(const State& x, int side, const Eigen::Vector3d& hand,
+                                   const Eigen::Vector3d& target) const;
 
  private:
   // solve() for the point `end` at offset `f0` in the elbow's frame instead of the wrist.

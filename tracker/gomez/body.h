@@ -1,6 +1,9 @@
 // The monocular tracker's articulated body in one place: its sized skeleton, the DOF state on
-// it, the capsules it is rendered with and the arms' analytic kinematics.
+// it, the capsules it is rendered with and the arms' (and the full body's legs') analytic
+// kinematics.
 #pragma once
+
+#include <optional>
 
 #include "models/pose.h"
 #include "models/skeleton.h"
@@ -19,7 +22,9 @@ struct Body {
         shape(make_body_shape(skeleton, kind, scales)),
         dofs(skeleton, kind, first,
              on_floor ? sole_points(shape, skeleton) : std::vector<FloorContact>{}),
-        arms(dofs) {}
+        arms(dofs),
+        legs(kind == BodyKind::full ? std::optional<ArmKinematics>(std::in_place, dofs, Limbs::legs)
+                                    : std::nullopt) {}
   Body(const Body&) = delete;
   Body& operator=(const Body&) = delete;
 
@@ -27,6 +32,7 @@ struct Body {
   BodyShape shape;
   BodyDofs dofs;
   ArmKinematics arms;
+  std::optional<ArmKinematics> legs;  // the full body's
 };
 
 }  // namespace simcap::tracker::gomez

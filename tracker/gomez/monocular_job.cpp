@@ -153,7 +153,7 @@ TrackSummary track_monocular(const fs::path& dataset_path, const fs::path& out,
   std::vector<int> numbers;
   std::ostringstream frames_csv;
   frames_csv << "frame,region,edge_px,feet_px,evaluations,groups,simplex_groups,flips,reflected,"
-                "hand_proposals,depth_proposals,moved_parts,"
+                "hand_proposals,depth_proposals,limb_end_proposals,moved_parts,"
                 "cues_ms,search_ms"
              << (options.oracle ? ",truth_region,truth_edge_px,truth_feet_px" : "") << "\n";
   std::optional<Skeleton> skeleton;
@@ -214,11 +214,11 @@ TrackSummary track_monocular(const fs::path& dataset_path, const fs::path& out,
         std::string moved;
         for (int k = 0; k < kPartCount; ++k) moved += t.filter.moved[k] ? '1' : '0';
         char line[256];
-        std::snprintf(line, sizeof line, "%d,%.6f,%.4f,%.4f,%d,%d,%d,%d,%d,%d,%d,%s,%.3f,%.3f\n",
+        std::snprintf(line, sizeof line, "%d,%.6f,%.4f,%.4f,%d,%d,%d,%d,%d,%d,%d,%d,%s,%.3f,%.3f\n",
                       frame, t.score.region, t.score.edge, t.score.feet, t.evaluations,
                       t.filter.groups, t.filter.simplex_groups, t.filter.flips, t.filter.reflected,
-                      t.filter.hand_proposals, t.filter.depth_proposals, moved.c_str(), t.cues_ms,
-                      t.search_ms);
+                      t.filter.hand_proposals, t.filter.depth_proposals,
+                      t.filter.limb_end_proposals, moved.c_str(), t.cues_ms, t.search_ms);
         frames_csv << line;
         if (options.oracle) {
           frames_csv.seekp(-1, std::ios_base::cur);

@@ -82,7 +82,8 @@ MonocularTracker::MonocularTracker(std::unique_ptr<Body> body, const State& x0,
     light_fit_ = fit_start_light(*body_, x0, camera, image, silhouette, classes_.cell_class());
     scorer_->set_lighting(light_fit_.lighting);
   }
-  filter_ = std::make_unique<ParticleFilter>(*scorer_, &body_->arms, options.filter);
+  filter_ = std::make_unique<ParticleFilter>(*scorer_, &body_->arms, options.filter,
+                                             body_->legs ? &*body_->legs : nullptr);
 }
 
 TrackedFrame MonocularTracker::track(const cv::Mat& image, const cv::Mat& silhouette, int frame,

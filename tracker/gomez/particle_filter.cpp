@@ -61,9 +61,10 @@ struct ParticleFilter::Rng {
 };
 
 ParticleFilter::ParticleFilter(const PoseScorer& scorer, const ArmKinematics* arms,
-                               const FilterOptions& options)
+                               const FilterOptions& options, const ArmKinematics* legs)
     : scorer_(&scorer),
       arms_(arms),
+      legs_(legs),
       mirror_(scorer.dofs()),
       mirror_tells_(tells_front_from_back(scorer.shape(), scorer.cell_class())),
       options_(options) {
@@ -73,6 +74,8 @@ ParticleFilter::ParticleFilter(const PoseScorer& scorer, const ArmKinematics* ar
     const std::string& joint = skeleton[shape.capsules[c].joint].name;
     if (joint == "l_radiocarpal") hand_capsule_[0] = static_cast<int>(c);
     if (joint == "r_radiocarpal") hand_capsule_[1] = static_cast<int>(c);
+    if (joint == "l_talocrural") foot_capsule_[0] = static_cast<int>(c);
+    if (joint == "r_talocrural") foot_capsule_[1] = static_cast<int>(c);
     if (shape.capsules[c].front.squaredNorm() > 0) face_capsule_ = static_cast<int>(c);
   }
   const int trunk = skeleton.find("vl5");
@@ -139,6 +142,90 @@ std::vector<State> ParticleFilter::hand_proposals(const State& x, const FrameCue
                                        camera.unproject(ends[k][side]), options_.hand_depths)) {
         out.push_back(std::move(y));
       }
+    }
+  }
+  return out;
+}
+
+std::vector<State> ParticleFilter::limb_end_proposals(const State& x, const FrameCues& cues) const {
+  std::vector<State> out;
+  if (!arms_ || options_.limb_end_depths <= 0 || face_capsule_ < 0) return out;
+  const BodyDofs& dofs = scorer_->dofs();
+  const BodyShape& shape = scorer_->shape();
+  const Skeleton& skeleton = dofs.skeleton();
+  const Camera& camera = *cues.view.camera;
+  const auto g = forward_kinematics(skeleton, dofs.pose(x));
+  Eigen::Vector3d trunk = Eigen::Vector3d::Zero();
+  for (const char* joint : {"l_shoulder", "r_shoulder", "l_hip", "r_hip"}) {
+    trunk += 0.25 * g[skeleton.require(joint)].translation();
+  }
+  const double depth = camera.to_camera(trunk).z();
+  const auto trunk_px = camera.project(trunk);
+  if (!trunk_px || depth <= 0) return out;
+  // Lengths on the body at the trunk's depth, in pixels: a limb end explains an extremity within
+  // a hand's length of it, and an extremity is one when it lies at least 0.45 m from the trunk's
+  // centre along the silhouette (the shoulders' and hips' corners are nearer; a hand hanging
+  // beside the thigh, the head's top are farther).
+  const double metre_px = camera.K(0, 0) / depth;
+  const double tolerance = 0.15 * metre_px;
+  const double min_length = 0.45 * metre_px / cues.view.factor;
+  const std::vector<SilhouetteEnd> ends = silhouette_ends(cues, *trunk_px, min_length, 6);
+  if (ends.empty()) return out;
+  // Predicted ends: the hands, the feet (when the legs can be moved); and what explains an
+  // extremity without being moved to one: the elbows, the knees, the head.
+  struct Limb {
+    const ArmKinematics* kinematics;
+    int side;
+    int capsule;
+  };
+  std::vector<PredictedEnd> predicted;
+  std::vector<Limb> limbs;
+  const auto add = [&](int capsule, const ArmKinematics* kinematics, int side) {
+    if (capsule < 0) return;
+    const Capsule& c = shape.capsules[capsule];
+    const auto px = camera.project(g[c.joint] * c.b);
+    if (!px) return;
+    predicted.push_back({*px, tolerance, true});
+    limbs.push_back({kinematics, side, capsule});
+  };
+  for (int side = 0; side < 2; ++side) add(hand_capsule_[side], arms_, side);
+  for (int side = 0; side < 2; ++side) {
+    add(foot_capsule_[side], options_.limb_end_legs ? legs_ : nullptr, side);
+  }
+  // The elbows and knees explain an extremity at them (a bent arm's elbow sticks out as far as a
+  // hand does) and are never moved there.
+  for (const char* joint : {"l_elbow", "r_elbow", "l_knee", "r_knee"}) {
+    if (const auto px = camera.project(g[skeleton.require(joint)].translation())) {
+      predicted.push_back({*px, tolerance, false});
+      limbs.push_back({nullptr, 0, -1});
+    }
+  }
+  // The head explains every extremity on it (its top, the chin beside a raised arm) and is never
+  // moved: a hand put there matches the face's skin as well as the hand's own.
+  const Capsule& head = shape.capsules[face_capsule_];
+  const auto head_px = camera.project(g[head.joint] * (0.5 * (head.a + head.b)));
+  if (head_px) {
+    const double reach = 0.5 * (head.b - head.a).norm() + std::max(head.ra, head.rb);
+    predicted.push_back({*head_px, 1.5 * reach * metre_px, false});
+    limbs.push_back({nullptr, 0, face_capsule_});
+  }
+  const std::vector<int> owner = assign_ends(ends, predicted);
+  for (size_t k = 0; k < ends.size(); ++k) {
+    if (owner[k] < 0) continue;
+    const Limb& limb = limbs[owner[k]];
+    if (!limb.kinematics) continue;
+    const Capsule& c = shape.capsules[limb.capsule];
+    const Eigen::Vector3d origin = camera.centre(), ray = camera.unproject(ends[k].pixel);
+    // First the end at its present depth (the ray's point nearest it: a foot or hand mostly moves
+    // across the ray from one frame to the next), then spread over the ray's stretch it reaches.
+    const Eigen::Vector3d now = g[c.joint] * c.b;
+    const Eigen::Vector3d near = origin + std::max(0.0, (now - origin).dot(ray)) * ray;
+    if (auto y = limb.kinematics->reach_point(x, limb.side, c.b, near)) {
+      out.push_back(std::move(*y));
+    }
+    for (State& y :
+         limb.kinematics->reach_ray(x, limb.side, c.b, origin, ray, options_.limb_end_depths - 1)) {
+      out.push_back(std::move(y));
     }
   }
   return out;
@@ -357,7 +444,8 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
   const bool reach = options_.h5_end_effector && arms_ && hand_class_ != 0 &&
                      options_.hand_depths > 0 && !pool.empty();
   const bool depth = options_.depth_groups > 0;
-  if (flip || mirror || reach || depth) {
+  const bool ends = arms_ && options_.limb_end_depths > 0 && !pool.empty();
+  if (flip || mirror || reach || depth || ends) {
     std::vector<int> by_size(groups.size());
     std::iota(by_size.begin(), by_size.end(), 0);
     std::stable_sort(by_size.begin(), by_size.end(),
@@ -375,17 +463,23 @@ FilterStep ParticleFilter::step(const FrameCues& previous, const FrameCues& curr
     for (int k = 0; flip && k < std::min(options_.flip_groups, G); ++k) {
       for (State& y : arms_->flips(group_best(k), centre)) tested.push_back(std::move(y));
     }
+    const size_t best =
+        std::min_element(pool_e.begin(), pool_e.end(),
+                         [](const Energy& a, const Energy& b) { return a.total() < b.total(); }) -
+        pool_e.begin();
     if (reach) {
-      const size_t best =
-          std::min_element(pool_e.begin(), pool_e.end(),
-                           [](const Energy& a, const Energy& b) { return a.total() < b.total(); }) -
-          pool_e.begin();
       for (State& y : hand_proposals(pool[best], current)) {
         tested.push_back(std::move(y));
         ++out.hand_proposals;
       }
     }
-    out.flips = static_cast<int>(tested.size()) - out.hand_proposals;
+    if (ends) {
+      for (State& y : limb_end_proposals(pool[best], current)) {
+        tested.push_back(std::move(y));
+        ++out.limb_end_proposals;
+      }
+    }
+    out.flips = static_cast<int>(tested.size()) - out.hand_proposals - out.limb_end_proposals;
     const size_t join_freely = tested.size();
     for (int k = 0; mirror && k < std::min(options_.mirror_groups, G); ++k) {
       tested.push_back(mirror_.reflect(group_best(k), centre));

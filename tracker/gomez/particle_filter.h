@@ -4,7 +4,8 @@
 // parts whose region overlap dropped, H3 groups of at least n + 1 children turned into a
 // Nelder-Mead simplex, H4 kinematic flipping of the arms about the camera rays, H5 arms diffused
 // as wrist positions in camera coordinates plus the elbow's swivel angle; and simcap's additions:
-// arms proposed reaching the hands' image regions (H5 from the image), and for a walking body its
+// arms proposed reaching the hands' image regions (H5 from the image), arms and legs proposed
+// reaching the silhouette's geodesic extremities (limb ends), and for a walking body its
 // reflection across the camera ray (front/back), tested as H4 tests flips, and its root slid
 // in depth to meet the silhouette's feet and top rows.
 #pragma once
@@ -18,6 +19,7 @@
 #include "tracker/gomez/body_mirror.h"
 #include "tracker/gomez/hand_blobs.h"
 #include "tracker/gomez/pose_scorer.h"
+#include "tracker/gomez/silhouette_ends.h"
 
 namespace simcap::tracker::gomez {
 
@@ -55,6 +57,17 @@ struct FilterOptions {
   // its hand, not from diffusion about the last pose. Off on a body whose hands have the trunk's
   // class (no region of their own); 0 is off.
   int hand_depths = 2;
+  // Limb ends from the silhouette (simcap's addition, for hands and feet whatever their colour):
+  // the geodesic extremities of the silhouette from the best particle's trunk (silhouette_ends)
+  // that no hand, foot, elbow, knee or head of that pose explains are each claimed by the nearest
+  // hand or foot that explains none (assign_ends), and that limb is proposed reaching it: at its
+  // present depth (the ray's point nearest it), and at this many depths minus one spread along
+  // the ray's stretch it reaches (ArmKinematics::reach_point, reach_ray; the legs' too); the poses
+  // join the pool as H4's flips do. 0 is off.
+  int limb_end_depths = 0;
+  // Whether the feet are moved to the extremities they claim (else they still claim them, so that
+  // a hand is not sent to a foot's extremity, but stay).
+  bool limb_end_legs = false;
   // The root's depth from the silhouette's feet and top rows (simcap's addition for the full
   // body on the floor): how many groups, largest first, have their best particle slid along the
   // ground under its camera ray to where its image extent meets those rows
@@ -76,6 +89,7 @@ struct FilterStep {
   int flips = 0;                         // kinematic flips tested (H4)
   int reflected = 0;                     // front/back reflections that joined (beat every particle)
   int hand_proposals = 0;                // image-driven hand proposals tested (H5)
+  int limb_end_proposals = 0;            // limbs reaching the silhouette's extremities tested
   int depth_proposals = 0;               // root depths from the feet and top rows tested
   std::array<bool, kPartCount> moved{};  // H2's motion detection
 };
@@ -88,8 +102,10 @@ bool h2_diffuses(const Dof& dof, const std::array<bool, kPartCount>& moved);
 
 class ParticleFilter {
  public:
-  // Keeps references to the scorer and the arms (`arms` may be null when H4 and H5 are off).
-  ParticleFilter(const PoseScorer& scorer, const ArmKinematics* arms, const FilterOptions& options);
+  // Keeps references to the scorer, the arms (`arms` may be null when H4 and H5 are off) and the
+  // legs (may be null: no leg proposals).
+  ParticleFilter(const PoseScorer& scorer, const ArmKinematics* arms, const FilterOptions& options,
+                 const ArmKinematics* legs = nullptr);
 
   // Every particle at `x0`, scored on `cues`.
   void reset(const State& x0, const FrameCues& cues);
@@ -106,16 +122,21 @@ class ParticleFilter {
                 const Eigen::Matrix3d& camera_to_world) const;
   // Poses of `x` with a free arm reaching an unexplained hand region of `cues` (hand_depths).
   std::vector<State> hand_proposals(const State& x, const FrameCues& cues) const;
+  // Poses of `x` with a hand or foot reaching an unexplained extremity of the silhouette of
+  // `cues` (limb_end_depths).
+  std::vector<State> limb_end_proposals(const State& x, const FrameCues& cues) const;
   // Pixels of each part of `x` whose colour class the image shows there (full resolution).
   std::array<double, kPartCount> part_overlap(const State& x, const FrameCues& cues) const;
 
   const PoseScorer* scorer_;
   const ArmKinematics* arms_;
+  const ArmKinematics* legs_;
   BodyMirror mirror_;
   bool mirror_tells_ = false;  // tells_front_from_back of the scorer's body
   // The hands' capsules (left, right; -1: none), their colour class when it differs from the
   // trunk's (0: no hand proposals), and the face's capsule.
   int hand_capsule_[2] = {-1, -1};
+  int foot_capsule_[2] = {-1, -1};
   std::uint8_t hand_class_ = 0;
   int face_capsule_ = -1;
   FilterOptions options_;

@@ -114,36 +114,43 @@ TEST(ArmKinematics, EndEffectorSolvePutsTheWristWhereAsked) {
   }
 }
 
-// H5 from the image: every proposal puts the hand's far end on the asked pixel (to well under a
-// pixel), at depths spread along its camera ray, within the limits, the shoulder unmoved.
+// H5 from the image: every proposal puts the hand's far end (the foot's toe, for the legs'
+// kinematics) on the asked pixel (to well under a pixel), at depths spread along its camera ray,
+// within the limits, the shoulders and hips unmoved.
 TEST(ArmKinematics, ReachingARayPutsTheHandOnItsPixelAtSeveralDepths) {
   const Scene s;
-  for (int side = 0; side < 2; ++side) {
-    const Capsule* hand = nullptr;
-    for (const Capsule& c : s.body.shape.capsules) {
-      if (s.body.skeleton[c.joint].name == (side == 0 ? "l_radiocarpal" : "r_radiocarpal"))
-        hand = &c;
+  ASSERT_TRUE(s.body.legs.has_value());
+  for (const bool legs : {false, true}) {
+    const ArmKinematics& limbs = legs ? *s.body.legs : s.body.arms;
+    for (int side = 0; side < 2; ++side) {
+      const std::string end =
+          std::string(side == 0 ? "l_" : "r_") + (legs ? "talocrural" : "radiocarpal");
+      const Capsule* hand = nullptr;
+      for (const Capsule& c : s.body.shape.capsules) {
+        if (s.body.skeleton[c.joint].name == end) hand = &c;
+      }
+      ASSERT_NE(hand, nullptr);
+      const auto tip_of = [&](const State& y) {
+        return forward_kinematics(s.body.skeleton, s.body.dofs.pose(y))[hand->joint] * hand->b;
+      };
+      // A pixel 30 px beside the end's present projection and 25 px higher.
+      const Eigen::Vector2d pixel = *s.camera.project(tip_of(s.x)) + Eigen::Vector2d(30, -25);
+      const Eigen::Vector3d c = s.camera.centre(), ray = s.camera.unproject(pixel);
+      const std::vector<State> poses = limbs.reach_ray(s.x, side, hand->b, c, ray, 4);
+      ASSERT_GE(poses.size(), 3u) << end;
+      double nearest = INFINITY, farthest = 0;
+      for (const State& y : poses) {
+        EXPECT_TRUE(s.body.dofs.inside(y, 1e-6));
+        const Eigen::Vector3d tip = tip_of(y);
+        EXPECT_LT((*s.camera.project(tip) - pixel).norm(), 0.1) << end;
+        nearest = std::min(nearest, (tip - c).norm());
+        farthest = std::max(farthest, (tip - c).norm());
+        for (const char* root : {"l_shoulder", "r_shoulder", "l_hip", "r_hip"}) {
+          EXPECT_LT((s.joint(y, root) - s.joint(s.x, root)).norm(), 1e-9) << end << root;
+        }
+      }
+      EXPECT_GT(farthest - nearest, 0.2) << end;
     }
-    ASSERT_NE(hand, nullptr);
-    const auto tip_of = [&](const State& y) {
-      return forward_kinematics(s.body.skeleton, s.body.dofs.pose(y))[hand->joint] * hand->b;
-    };
-    // A pixel 30 px beside the hand's present projection and 25 px higher.
-    const Eigen::Vector2d pixel = *s.camera.project(tip_of(s.x)) + Eigen::Vector2d(30, -25);
-    const Eigen::Vector3d c = s.camera.centre(), ray = s.camera.unproject(pixel);
-    const std::vector<State> poses = s.body.arms.reach_ray(s.x, side, hand->b, c, ray, 4);
-    ASSERT_GE(poses.size(), 3u) << side;
-    double nearest = INFINITY, farthest = 0;
-    for (const State& y : poses) {
-      EXPECT_TRUE(s.body.dofs.inside(y, 1e-6));
-      const Eigen::Vector3d tip = tip_of(y);
-      EXPECT_LT((*s.camera.project(tip) - pixel).norm(), 0.1) << side;
-      nearest = std::min(nearest, (tip - c).norm());
-      farthest = std::max(farthest, (tip - c).norm());
-      EXPECT_LT((s.joint(y, "l_shoulder") - s.joint(s.x, "l_shoulder")).norm(), 1e-9);
-      EXPECT_LT((s.joint(y, "r_shoulder") - s.joint(s.x, "r_shoulder")).norm(), 1e-9);
-    }
-    EXPECT_GT(farthest - nearest, 0.2) << side;
   }
   // A ray the arm cannot reach (far above the body) gives none.
   const Eigen::Vector3d up = (Eigen::Vector3d(0, 4, 0) - s.camera.centre()).normalized();
