@@ -23,7 +23,7 @@ struct SpottingParams {
   // values also reaches the threshold (simcap's; 0 is the thesis): a tracked hand's depth that
   // jumps between two surfaces in one frame (a hand pointing at the camera read on its forearm,
   // then on itself) is one huge psE, whose tenth alone crosses the threshold for n frames; a
-  // gesture's energy lasts. The stretch's ends are the thesis' either way.
+  // gesture's energy lasts. It does not move the stretch's ends.
   int drop_largest = 1;
   // Algorithm 14 measured again where the stretch ends (simcap's; false is the thesis, which
   // moves the end back by the delay measured at the start): the end is the last frame whose psE
@@ -40,8 +40,9 @@ struct SpottingParams {
 
 // The path rebuilt from its first point and its velocities x[i] - x[i-1], each coordinate of
 // each velocity replaced by the median of the `frames` velocities centred on it (edges
-// repeated; the first velocity is 0): a step or a spike of up to (frames - 1) / 2 frames is
-// dropped, a motion that lasts is kept. frames = 1 returns x.
+// repeated; the first velocity is 0): a displacement made in fewer than (frames + 1) / 2 of the
+// frames around it (a step that stays, a spike out and back) is dropped, a motion that lasts
+// that long is kept. frames = 1 returns x.
 std::vector<Eigen::Vector3d> median_velocity_path(const std::vector<Eigen::Vector3d>& x,
                                                   int frames);
 
