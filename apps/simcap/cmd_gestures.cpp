@@ -1,6 +1,8 @@
 // `simcap gestures`: Unzueta's gesture spotting and recognition scored on rendered corpora.
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <string>
 
 #include "apps/simcap/commands.h"
 #include "apps/simcap/gesture_summary.h"
@@ -57,13 +59,33 @@ void add_gestures(CLI::App& app, Action& action) {
                   "Threshold on the mean pseudo-energy |v|^2/2 of a hand, (m/s)^2")
       ->capture_default_str()
       ->check(CLI::Range(1e-4, 100.0));
-  cmd->add_option("--min-frames", o.spotting.min_frames, "Shorter spotted stretches are dropped")
+  cmd->add_option("--min-frames", o.spotting.min_frames,
+                  "A stretch whose pseudo-energy history stays above the threshold for fewer "
+                  "frames is dropped")
       ->capture_default_str()
       ->check(CLI::Range(1, 1000));
   cmd->add_option("--drop-largest", o.spotting.drop_largest,
                   "The history's mean leaves out its N largest pseudo-energies (0: the thesis)")
       ->capture_default_str()
       ->check(CLI::Range(0, 99));
+  cmd->add_option("--end-delay", o.spotting.delay_at_end,
+                  "Where Algorithm 14's delay that moves a stretch's end back is measured: 'start' "
+                  "(the thesis: the start's delay moves both ends) or 'end' (measured again where "
+                  "the history falls below the threshold)")
+      ->transform(
+          CLI::CheckedTransformer(std::map<std::string, bool>{{"start", false}, {"end", true}}))
+      ->default_str("end");
+  cmd->add_option(
+         "--velocity-median", o.spotting.velocity_median,
+         "Each hand velocity coordinate is the median of this many frames before the "
+         "pseudo-energy is taken, odd (1: the thesis); a tracked point's jump is no motion")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 31))
+      ->check(CLI::Validator(
+          [](const std::string& v) {
+            return std::stoi(v) % 2 == 1 ? std::string() : "expected an odd number, got " + v;
+          },
+          "ODD"));
   cmd->add_option("--states", o.states, "Spline-resampled states per gesture (Table 12)")
       ->capture_default_str()
       ->check(CLI::Range(2, 1000));

@@ -37,7 +37,7 @@ double iou(int a0, int a1, int b0, int b1) {
 std::vector<SpottedGesture> spot(const GestureCorpus& c, const GestureOptions& o) {
   std::vector<SpottedGesture> out;
   for (int l = 0; l < 2; ++l) {
-    const auto energy = kinetic_pseudo_energy(c.signals.hand[l], c.fps);
+    const auto energy = spotting_energy(c.signals.hand[l], c.fps, o);
     for (const SpottedStretch& s : spot_gestures(energy, o.spotting)) {
       out.push_back(
           {kGestureLimbs[l], c.signals.frames[s.first], c.signals.frames[s.last], "", 0, {}});
@@ -122,18 +122,27 @@ void add(Confusion& c, const std::string& truth, const std::string& predicted) {
 
 }  // namespace
 
-GestureResults evaluate_gestures(const std::vector<GestureCorpus>& corpora,
+std::vector<double> spotting_energy(const std::vector<Eigen::Vector3d>& hand, double fps,
+                                    const GestureOptions& o) {
+  std::vector<Eigen::Vector3d> path = median_velocity_path(hand, o.spotting.velocity_median);
+  smooth_path(path, o.smooth_sigma);
+  return kinetic_pseudo_energy(path, fps);
+}
+
+GestureResults evaluate_gestures(const std::vector<GestureCorpus>& raw_corpora,
                                  const GestureOptions& o) {
-  if (corpora.size() < 2) {
+  if (raw_corpora.size() < 2) {
     throw Error(
         "gestures: need at least two corpora (each one subject); every corpus is "
         "recognised by classifiers trained on the others");
   }
   std::vector<std::vector<SpottedGesture>> spotted;
-  for (const auto& c : corpora) {
+  for (const auto& c : raw_corpora) {
     for (const auto& g : c.truth) limb_index(g.limb, c.name);
     spotted.push_back(spot(c, o));
   }
+  std::vector<GestureCorpus> corpora = raw_corpora;
+  for (auto& c : corpora) smooth_signals(c.signals, o.smooth_sigma);
   GestureResults r;
   for (size_t test = 0; test < corpora.size(); ++test) {
     const GestureCorpus& c = corpora[test];

@@ -19,7 +19,7 @@ namespace simcap::tracker {
 struct GestureCorpus {
   std::string name;  // shown in reports (the track folder)
   double fps = 30.0;
-  BodySignals signals;
+  BodySignals signals;                 // as the track has them, unsmoothed
   std::vector<GestureInterval> truth;  // one actor's rows
 };
 
@@ -71,8 +71,13 @@ struct GestureResults {
   double label_accuracy = 0;  // combined per-limb label stream against the truth's labels
 };
 
-// Needs at least two corpora. Throws Error when a corpus' truth names a limb other than
-// kGestureLimbs or there is nothing to train on.
+// What spotting thresholds for one hand's path (`signals.hand[l]`): the psE of the path rebuilt
+// from its median velocities (SpottingParams::velocity_median), smoothed by `smooth_sigma`.
+std::vector<double> spotting_energy(const std::vector<Eigen::Vector3d>& hand, double fps,
+                                    const GestureOptions& options);
+
+// The signals are smoothed by `smooth_sigma` for recognition. Needs at least two corpora. Throws
+// Error when a corpus' truth names a limb other than kGestureLimbs or there is nothing to train on.
 GestureResults evaluate_gestures(const std::vector<GestureCorpus>& corpora,
                                  const GestureOptions& options);
 

@@ -33,7 +33,7 @@ Json confusion_json(const Confusion& c) {
 
 }  // namespace
 
-GestureCorpus load_gesture_corpus(const GestureSource& source, double smooth_sigma) {
+GestureCorpus load_gesture_corpus(const GestureSource& source) {
   const fs::path table = source.dataset / "gt" / "gestures.csv";
   if (!fs::is_regular_file(table)) {
     throw_input_error(table, 0, "",
@@ -57,7 +57,6 @@ GestureCorpus load_gesture_corpus(const GestureSource& source, double smooth_sig
     }
   }
   c.signals = body_signals(read_joint_track(joints), joints.string());
-  smooth_signals(c.signals, smooth_sigma);
   return c;
 }
 
@@ -90,7 +89,7 @@ std::string confusion_text(const Confusion& c) {
 GestureResults run_gestures(const std::vector<GestureSource>& sources, const fs::path& out,
                             const GestureOptions& options) {
   std::vector<GestureCorpus> corpora;
-  for (const auto& s : sources) corpora.push_back(load_gesture_corpus(s, options.smooth_sigma));
+  for (const auto& s : sources) corpora.push_back(load_gesture_corpus(s));
   const GestureResults r = evaluate_gestures(corpora, options);
 
   fs::create_directories(out);
@@ -127,6 +126,8 @@ GestureResults run_gestures(const std::vector<GestureSource>& sources, const fs:
                      {"threshold", options.spotting.threshold},
                      {"min_frames", options.spotting.min_frames},
                      {"drop_largest", options.spotting.drop_largest},
+                     {"delay_at_end", options.spotting.delay_at_end},
+                     {"velocity_median_frames", options.spotting.velocity_median},
                      {"states", options.states},
                      {"size", options.size},
                      {"k", options.k},

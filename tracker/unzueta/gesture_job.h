@@ -17,8 +17,7 @@ struct GestureSource {
 };
 
 // Reads the pair; Errors name the file (no gestures.csv, several actors, missing joints).
-// The signals are smoothed by `smooth_sigma` frames.
-GestureCorpus load_gesture_corpus(const GestureSource& source, double smooth_sigma);
+GestureCorpus load_gesture_corpus(const GestureSource& source);
 
 GestureResults run_gestures(const std::vector<GestureSource>& sources,
                             const std::filesystem::path& out, const GestureOptions& options);

@@ -63,7 +63,7 @@ std::string limb_plot(const GestureCorpus& c, const CorpusGestures& g, size_t li
                       const GestureOptions& o) {
   const std::string& name = kGestureLimbs[limb];
   const std::vector<double> mean =
-      history_mean(kinetic_pseudo_energy(c.signals.hand[limb], c.fps), o.spotting.history);
+      history_mean(spotting_energy(c.signals.hand[limb], c.fps, o), o.spotting.history);
   LinePlot plot;
   plot.title =
       name + ": mean pseudo-energy of the last " + std::to_string(o.spotting.history) + " frames";

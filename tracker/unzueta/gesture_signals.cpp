@@ -44,27 +44,37 @@ BodySignals body_signals(const JointTrack& track, const std::string& source) {
   return s;
 }
 
+namespace {
+
+template <typename Series>
+void smooth_series(Series& series, double sigma) {
+  if (sigma <= 0 || series.size() < 2) return;
+  using V = typename Series::value_type;
+  const int n = static_cast<int>(series.size());
+  const int dims = static_cast<int>(V::RowsAtCompileTime);
+  cv::Mat m(n, dims, CV_64F);
+  for (int i = 0; i < n; ++i) {
+    for (int d = 0; d < dims; ++d) m.at<double>(i, d) = series[static_cast<size_t>(i)][d];
+  }
+  cv::Mat out;
+  // Down the columns only: a (1 x ksize) kernel across features would mix them.
+  cv::GaussianBlur(m, out, cv::Size(1, 2 * static_cast<int>(std::ceil(3 * sigma)) + 1), 0, sigma,
+                   cv::BORDER_REPLICATE);
+  for (int i = 0; i < n; ++i) {
+    for (int d = 0; d < dims; ++d) series[static_cast<size_t>(i)][d] = out.at<double>(i, d);
+  }
+}
+
+}  // namespace
+
+void smooth_path(std::vector<Eigen::Vector3d>& path, double sigma) {
+  smooth_series(path, sigma);
+}
+
 void smooth_signals(BodySignals& s, double sigma) {
-  if (sigma <= 0 || s.frames.size() < 2) return;
-  auto smooth = [&](auto& series) {
-    using V = typename std::decay_t<decltype(series)>::value_type;
-    const int n = static_cast<int>(series.size());
-    const int dims = static_cast<int>(V::RowsAtCompileTime);
-    cv::Mat m(n, dims, CV_64F);
-    for (int i = 0; i < n; ++i) {
-      for (int d = 0; d < dims; ++d) m.at<double>(i, d) = series[static_cast<size_t>(i)][d];
-    }
-    cv::Mat out;
-    // Down the columns only: a (1 x ksize) kernel across features would mix them.
-    cv::GaussianBlur(m, out, cv::Size(1, 2 * static_cast<int>(std::ceil(3 * sigma)) + 1), 0, sigma,
-                     cv::BORDER_REPLICATE);
-    for (int i = 0; i < n; ++i) {
-      for (int d = 0; d < dims; ++d) series[static_cast<size_t>(i)][d] = out.at<double>(i, d);
-    }
-  };
-  smooth(s.hand[0]);
-  smooth(s.hand[1]);
-  smooth(s.pose);
+  smooth_series(s.hand[0], sigma);
+  smooth_series(s.hand[1], sigma);
+  smooth_series(s.pose, sigma);
 }
 
 }  // namespace simcap::tracker

@@ -32,4 +32,7 @@ BodySignals body_signals(const JointTrack& track, const std::string& source);
 // tracker that may not filter them, whose frame-to-frame jitter would read as kinetic energy.
 void smooth_signals(BodySignals& signals, double sigma);
 
+// One path smoothed the same way.
+void smooth_path(std::vector<Eigen::Vector3d>& path, double sigma);
+
 }  // namespace simcap::tracker

@@ -11,6 +11,28 @@ std::vector<double> kinetic_pseudo_energy(const std::vector<Eigen::Vector3d>& x,
   return e;
 }
 
+std::vector<Eigen::Vector3d> median_velocity_path(const std::vector<Eigen::Vector3d>& x,
+                                                  int frames) {
+  if (frames <= 1 || x.size() < 2) return x;
+  const int n = static_cast<int>(x.size());
+  std::vector<Eigen::Vector3d> v(x.size(), Eigen::Vector3d::Zero());
+  for (int i = 1; i < n; ++i) v[i] = x[i] - x[i - 1];
+  const int half = frames / 2;
+  std::vector<Eigen::Vector3d> out(x.size());
+  out[0] = x[0];
+  std::vector<double> window(static_cast<size_t>(2 * half + 1));
+  for (int i = 1; i < n; ++i) {
+    Eigen::Vector3d m;
+    for (int d = 0; d < 3; ++d) {
+      for (int k = -half; k <= half; ++k) window[k + half] = v[std::clamp(i + k, 0, n - 1)][d];
+      std::nth_element(window.begin(), window.begin() + half, window.end());
+      m[d] = window[half];
+    }
+    out[i] = out[i - 1] + m;
+  }
+  return out;
+}
+
 std::vector<double> history_mean(const std::vector<double>& psE, int history) {
   std::vector<double> mean(psE.size());
   double sum = 0;
@@ -36,9 +58,24 @@ std::vector<SpottedStretch> spot_gestures(const std::vector<double>& psE,
   const int n = static_cast<int>(psE.size());
   const std::vector<double> history = history_mean(psE, params.history);
   bool active = false, confirmed = false;
-  int start = 0, delay = 0;
-  auto close = [&](int end) {
-    if (confirmed && end - start + 1 >= params.min_frames) out.push_back({start, end});
+  int start = 0, delay = 0, detected = 0;
+  // `below`: the first frame whose history mean is under the threshold again (n: none is, the
+  // stretch ends at the last frame).
+  auto close = [&](int below) {
+    int end = below == n ? n - 1 : std::max(start, below - delay);
+    if (params.delay_at_end && below < n) {
+      end = start;
+      for (int i = below; i > start; --i) {
+        if (psE[i] >= params.threshold) {
+          end = i;
+          break;
+        }
+      }
+    }
+    // One frame is no path to recognise.
+    if (confirmed && end > start && below - detected >= params.min_frames) {
+      out.push_back({start, end});
+    }
     active = false;
   };
   std::vector<double> window;
@@ -47,10 +84,11 @@ std::vector<SpottedStretch> spot_gestures(const std::vector<double>& psE,
     if (!active && mean >= params.threshold) {
       delay = spotting_delay(psE, t, params.history, params.threshold);
       start = t - delay;
+      detected = t;
       active = true;
       confirmed = false;
     } else if (active && mean < params.threshold) {
-      close(std::max(start, t - delay));
+      close(t);
     }
     if (active && !confirmed) {
       window.assign(psE.begin() + std::max(0, t - params.history + 1), psE.begin() + t + 1);
@@ -62,7 +100,7 @@ std::vector<SpottedStretch> spot_gestures(const std::vector<double>& psE,
           params.threshold;
     }
   }
-  if (active) close(n - 1);
+  if (active) close(n);
   return out;
 }
 

@@ -74,10 +74,37 @@ TEST(GestureSpotting, KnownIntervalsWithADirectionChange) {
   SpottingParams p;
   p.threshold = 0.18;
   p.drop_largest = 0;  // the thesis' mean
+  p.delay_at_end = false;
   expect_segments(spot_gestures(e, p), {{49, 80}, {149, 170}});
-  // A short twitch is not a gesture; one still open at the end closes there.
-  p.min_frames = 8;
+  // Measured where the history falls below (t = 85, 175): the last moving frames, 79 and 169.
+  p.delay_at_end = true;
+  expect_segments(spot_gestures(e, p), {{49, 79}, {149, 169}});
+  // A short twitch is not a gesture; one still open at the end closes there (its history is
+  // above the threshold from t = 34 to the last frame 39: 6 frames).
+  p.min_frames = 6;
   expect_segments(spot_gestures(pulses(40, {{5, 7}, {30, 39}}, 0.36), p), {{29, 39}});
+  p.min_frames = 7;
+  EXPECT_TRUE(spot_gestures(pulses(40, {{5, 7}, {30, 39}}, 0.36), p).empty());
+}
+
+TEST(GestureSpotting, TheEndsDelayIsMeasuredAtTheEnd) {
+  // A 10-frame stroke [40, 49] at psE 2: the history crosses at t = 40 (2 / 10), Alg. 14's
+  // delay is 1 (start 39); the history holds the stroke until it has left the window, below at
+  // t = 59. The start's delay puts the end at 58, nine frames late; measured at the end, the
+  // last frame at or above the threshold is 49.
+  const auto e = pulses(100, {{40, 49}}, 2.0);
+  SpottingParams p;
+  p.threshold = 0.18;
+  p.delay_at_end = false;
+  expect_segments(spot_gestures(e, p), {{39, 58}});
+  p.delay_at_end = true;
+  expect_segments(spot_gestures(e, p), {{39, 49}});
+  // Six moving frames [40, 45] keep the history above the threshold for 15 frames (t = 40 to
+  // 54): the stretch [39, 45] is kept although it is shorter than `min_frames`, which counts the
+  // history; a history above for fewer frames is dropped.
+  expect_segments(spot_gestures(pulses(100, {{40, 45}}, 2.0), p), {{39, 45}});
+  p.min_frames = 16;
+  EXPECT_TRUE(spot_gestures(pulses(100, {{40, 45}}, 2.0), p).empty());
 }
 
 TEST(GestureSpotting, OneFrameJumpIsNotAGestureWithoutItsLargestValue) {
@@ -92,6 +119,7 @@ TEST(GestureSpotting, OneFrameJumpIsNotAGestureWithoutItsLargestValue) {
   SpottingParams p;
   p.threshold = 0.18;
   p.drop_largest = 0;
+  p.delay_at_end = false;  // the thesis' ends
   expect_segments(spot_gestures(e, p), {{39, 49}, {99, 130}});
   p.drop_largest = 1;
   expect_segments(spot_gestures(e, p), {{99, 130}});
@@ -109,6 +137,56 @@ TEST(GestureSpotting, OneFrameJumpIsNotAGestureWithoutItsLargestValue) {
   EXPECT_EQ(spot_gestures(e, p).size(), 2u);
   p.drop_largest = 2;
   EXPECT_EQ(spot_gestures(e, p).size(), 1u);
+}
+
+// A hand moving at 0.3 m/s along X (30 frames/s) whose track jumps: frame 1 lies 0.1 m off
+// frame 0 (the calibration posture against the first tracked frame); frames 40, 43-44, 47 and
+// 50-51 read a surface 0.12 m behind the hand (a depth flickering between two surfaces); frame
+// 80 spikes 0.2 m for one frame.
+std::vector<Eigen::Vector3d> jumpy_path() {
+  std::vector<Eigen::Vector3d> x;
+  for (int i = 0; i < 120; ++i) {
+    Eigen::Vector3d p(0.01 * i, 0, 0);
+    if (i >= 1) p.z() += 0.1;
+    if (i == 40 || i == 43 || i == 44 || i == 47 || i == 50 || i == 51) p.z() += 0.12;
+    if (i == 80) p.z() += 0.2;
+    x.push_back(p);
+  }
+  return x;
+}
+
+TEST(GestureSpotting, MedianVelocityPathDropsJumpsAndKeepsMotion) {
+  const auto x = jumpy_path();
+  const auto r = median_velocity_path(x, 5);
+  ASSERT_EQ(r.size(), x.size());
+  // The steady motion is all that is left: 0.01 m a frame along X from x[0].
+  for (size_t i = 0; i < r.size(); ++i) {
+    EXPECT_LT((r[i] - Eigen::Vector3d(0.01 * static_cast<double>(i), 0, 0)).norm(), 1e-12) << i;
+  }
+  const auto e = kinetic_pseudo_energy(r, 30.0);
+  for (size_t i = 1; i < e.size(); ++i) EXPECT_NEAR(e[i], 0.5 * 0.3 * 0.3, 1e-9) << i;
+  // 1 frame: the path itself.
+  EXPECT_EQ(median_velocity_path(x, 1), x);
+  // A stroke that lasts (0.05 m a frame for 10 frames) keeps its speed inside.
+  std::vector<Eigen::Vector3d> stroke(40, Eigen::Vector3d::Zero());
+  for (int i = 15; i < 40; ++i) stroke[i].y() = 0.05 * std::min(i - 14, 10);
+  const auto s = median_velocity_path(stroke, 5);
+  for (int i = 18; i <= 22; ++i) EXPECT_NEAR(s[i].y() - s[i - 1].y(), 0.05, 1e-12) << i;
+}
+
+TEST(GestureSpotting, TrackJumpsAreNoGesture) {
+  // From the path's own velocities (the thesis) the flicker is a gesture, even without each
+  // history's largest value; from its median velocities nothing is.
+  GestureOptions o;
+  o.spotting.velocity_median = 1;
+  const auto x = jumpy_path();
+  expect_segments(spot_gestures(spotting_energy(x, 30.0, o), o.spotting), {{44, 53}});
+  o.spotting.velocity_median = 5;
+  EXPECT_TRUE(spot_gestures(spotting_energy(x, 30.0, o), o.spotting).empty());
+  // A 1 m/s stroke over frames 60-74 of the same track is spotted there.
+  auto with_stroke = x;
+  for (int i = 60; i < 120; ++i) with_stroke[i].y() += 0.033 * std::min(i - 59, 15);
+  expect_segments(spot_gestures(spotting_energy(with_stroke, 30.0, o), o.spotting), {{59, 74}});
 }
 
 TEST(GestureNormalization, ClampedSplineByHand) {
