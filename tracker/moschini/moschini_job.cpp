@@ -25,6 +25,7 @@
 #include "tracker/moschini/pose_init.h"
 #include "tracker/moschini/shoulder_height.h"
 #include "tracker/moschini/surface_fit.h"
+#include "tracker/moschini/track_back.h"
 
 namespace simcap::tracker {
 namespace fs = std::filesystem;
@@ -99,18 +100,21 @@ BodyDimensions larger(BodyDimensions dims, double by) {
 }
 
 // Restarts `tracker` from the last of `frames` with the shoulders' height its arms measure
-// (shoulder_height.h), when it differs from the tracked body's by kShoulderMinChange or more.
-void remeasure_shoulders(std::optional<MoschiniTracker>& tracker, const TrackerOptions& options,
-                         const std::vector<TrackedObservation>& frames) {
+// (shoulder_height.h), when it differs from the tracked body's by kShoulderMinChange or more;
+// returns the pose it restarted from.
+std::optional<StickPose> remeasure_shoulders(std::optional<MoschiniTracker>& tracker,
+                                             const TrackerOptions& options,
+                                             const std::vector<TrackedObservation>& frames) {
   BodyDimensions dims = tracker->model().dimensions();
   const BodySurface surface = tracker->surface();
   const AutoStartOptions range;
   const ShoulderHeight found = shoulders_from_arms(
       dims, surface, options, frames, range.shoulders_lo, range.shoulders_hi, range.evaluations);
-  if (std::abs(found.d_s - dims.d_s) < kShoulderMinChange) return;
+  if (std::abs(found.d_s - dims.d_s) < kShoulderMinChange) return std::nullopt;
   dims.d_s = found.d_s;
   tracker.emplace(dims, surface, options);
   tracker->start(found.last);
+  return found.last;
 }
 
 }  // namespace
@@ -281,6 +285,18 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
   // often it was, and the index of the frame being tracked.
   std::vector<TrackedObservation> shoulder_frames;
   int shoulder_measures = 0, index = -1;
+  // --init auto, alone in view: the frames tracked before the body is final (the shoulders'
+  // last measurement), written only once they are tracked again with it (track_back).
+  bool holding = refit_frame.has_value() && !truth;
+  std::vector<HeldFrame> held;
+  auto release_held = [&] {
+    holding = false;
+    // Before the refit the body is the start's guess: nothing better to track them with.
+    if (index > kRefitFrame)
+      track_back(tracker->model().dimensions(), tracker->surface(), topt, held);
+    for (const HeldFrame& frame : held) sink(ds, *frame.obs, frame.step, *tracker);
+    held.clear();
+  };
   tbb::parallel_pipeline(
       8, tbb::make_filter<void, int>(tbb::filter_mode::serial_in_order,
                                      [&](tbb::flow_control& fc) {
@@ -310,7 +326,11 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
                    const TrackStep step = tracker->step(*obs);
                    last_body = place(tracker->surface(), tracker->model().geometry(step.pose));
                    if (occlusion) occlusion->observe(*last_body, obs->silhouettes);
-                   sink(ds, *obs, step, *tracker);
+                   if (holding) {
+                     held.push_back({obs, step});
+                   } else {
+                     sink(ds, *obs, step, *tracker);
+                   }
                    if (refit_frame && obs->frame <= *refit_frame)
                      lowest_ankle = std::min(lowest_ankle, ankle_of(tracker->model(), step.pose));
                    ++index;
@@ -319,9 +339,12 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
                        shoulder_measures < kShoulderMeasures) {
                      shoulder_frames.push_back({obs, step.pose});
                      if (static_cast<int>(shoulder_frames.size()) == kShoulderFrames) {
-                       remeasure_shoulders(tracker, topt, shoulder_frames);
+                       const std::optional<StickPose> restart =
+                           remeasure_shoulders(tracker, topt, shoulder_frames);
+                       // Tracked back from where the tracker goes on.
+                       if (restart && holding) held.back().step.pose = *restart;
                        shoulder_frames.clear();
-                       ++shoulder_measures;
+                       if (++shoulder_measures == kShoulderMeasures && holding) release_held();
                      }
                    }
                    if (obs->frame == refit_frame) {
@@ -336,6 +359,7 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
                    }
                    progress.advance();
                  }));
+  if (holding) release_held();
   progress.finish();
   TrackSummary summary;
   summary.frames = static_cast<int>(frames.size());

@@ -8,6 +8,8 @@
 namespace simcap::tracker {
 namespace {
 
+using testing::max_joint_error;
+
 // A walking-like pose: torso turned and leaning, chest bent and turned on the pelvis, limbs,
 // hands and feet bent within their ranges (Moschini's joint set ignores what it lacks).
 StickPose reference_pose() {
@@ -58,14 +60,6 @@ IcpTargets centerline_only(const std::vector<Eigen::Vector3d>& points) {
   IcpTargets targets;
   targets.points = points;
   return targets;
-}
-
-double max_joint_error(const StickModel& model, const StickPose& a, const StickPose& b) {
-  const auto pa = model.reference_points(model.geometry(a));
-  const auto pb = model.reference_points(model.geometry(b));
-  double worst = 0;
-  for (int i = 0; i < kReferencePointCount; ++i) worst = std::max(worst, (pa[i] - pb[i]).norm());
-  return worst;
 }
 
 StickPose perturbed(const StickPose& truth, double angle, double shift) {
