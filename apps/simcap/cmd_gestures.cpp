@@ -86,6 +86,12 @@ void add_gestures(CLI::App& app, Action& action) {
             return std::stoi(v) % 2 == 1 ? std::string() : "expected an odd number, got " + v;
           },
           "ODD"));
+  cmd->add_option("--path-speed", o.path_speed_fraction,
+                  "The path recognised is the spotted stretch widened to where the hand's speed "
+                  "falls below this fraction of its peak in the stretch (0: the thesis, the "
+                  "stretch itself)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--states", o.states, "Spline-resampled states per gesture (Table 12)")
       ->capture_default_str()
       ->check(CLI::Range(2, 1000));

@@ -38,9 +38,24 @@ std::vector<SpottedGesture> spot(const GestureCorpus& c, const GestureOptions& o
   std::vector<SpottedGesture> out;
   for (int l = 0; l < 2; ++l) {
     const auto energy = spotting_energy(c.signals.hand[l], c.fps, o);
-    for (const SpottedStretch& s : spot_gestures(energy, o.spotting)) {
-      out.push_back(
-          {kGestureLimbs[l], c.signals.frames[s.first], c.signals.frames[s.last], "", 0, {}});
+    const std::vector<SpottedStretch> found = spot_gestures(energy, o.spotting);
+    std::vector<Eigen::Vector3d> recognised = c.signals.hand[l];
+    smooth_path(recognised, o.smooth_sigma);
+    const std::vector<double> motion = kinetic_pseudo_energy(recognised, c.fps);
+    const int n = static_cast<int>(motion.size());
+    for (size_t i = 0; i < found.size(); ++i) {
+      const int lo = i > 0 ? found[i - 1].last + 1 : 0;
+      const int hi = i + 1 < found.size() ? found[i + 1].first - 1 : n - 1;
+      const SpottedStretch p = widen_to_motion(motion, found[i], lo, hi, o.path_speed_fraction);
+      const auto& f = c.signals.frames;
+      out.push_back({kGestureLimbs[l],
+                     f[found[i].first],
+                     f[found[i].last],
+                     "",
+                     0,
+                     f[p.first],
+                     f[p.last],
+                     {}});
     }
   }
   struct Pair {
@@ -73,8 +88,8 @@ Eigen::VectorXd gesture_features(const GestureCorpus& c, const SpottedGesture& g
                                  const GestureOptions& o) {
   const int l = limb_index(g.limb, c.name);
   const auto& path = c.signals.hand[l];
-  return normalize_gesture({path.begin() + index_at(c.signals, g.first_frame),
-                            path.begin() + index_at(c.signals, g.last_frame) + 1},
+  return normalize_gesture({path.begin() + index_at(c.signals, g.path_first),
+                            path.begin() + index_at(c.signals, g.path_last) + 1},
                            o.states, o.size);
 }
 

@@ -33,6 +33,15 @@ struct GestureOptions {
   double match_iou =
       0.5;              // a spotted stretch finds a true gesture of its limb at this temporal IoU
   int pose_stride = 5;  // every n-th frame of a held pose trains the pose classifier
+  // The path recognised is the spotted stretch widened to where the hand's speed (on the
+  // smoothed path that is recognised) falls below this fraction of its peak in the stretch
+  // (simcap's; 0 is the thesis, the stretch itself). 5 % of the peak speed is the usual onset and
+  // offset of a reaching movement in motor-control studies. The stretch is the part of a gesture
+  // above the spotting threshold, whose slow first and last strokes it cuts by an amount that
+  // depends on the speed and, on a tracked hand, on its jitter at the threshold crossings: the
+  // same digit is cut differently in each subject (a `1` without its slow upstroke reads as a `7`,
+  // a `7` without its slow bar as a `1`).
+  double path_speed_fraction = 0.05;
 };
 
 struct SpottedGesture {
@@ -40,6 +49,7 @@ struct SpottedGesture {
   int first_frame = 0, last_frame = 0;
   std::string truth;  // label of the matched true gesture; empty for a false detection
   double iou = 0;
+  int path_first = 0, path_last = 0;  // the frames of the path recognised
   // Every spotted one; "unknown" when no other corpus has a gesture of this limb.
   std::map<GestureClassifierKind, std::string> predicted;
 };

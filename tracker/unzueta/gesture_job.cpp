@@ -93,8 +93,8 @@ GestureResults run_gestures(const std::vector<GestureSource>& sources, const fs:
   const GestureResults r = evaluate_gestures(corpora, options);
 
   fs::create_directories(out);
-  CsvWriter csv(out / "spotted.csv",
-                {"corpus", "limb", "first_frame", "last_frame", "truth", "iou", "knn", "svm"});
+  CsvWriter csv(out / "spotted.csv", {"corpus", "limb", "first_frame", "last_frame", "path_first",
+                                      "path_last", "truth", "iou", "knn", "svm"});
   Json corpora_json = Json::array();
   for (const auto& c : r.corpora) {
     for (const auto& g : c.spotted) {
@@ -105,7 +105,8 @@ GestureResults run_gestures(const std::vector<GestureSource>& sources, const fs:
       char iou[32];
       std::snprintf(iou, sizeof iou, "%.4f", g.iou);
       csv.out() << c.name << ',' << g.limb << ',' << g.first_frame << ',' << g.last_frame << ','
-                << g.truth << ',' << iou << ',' << predicted(GestureClassifierKind::knn) << ','
+                << g.path_first << ',' << g.path_last << ',' << g.truth << ',' << iou << ','
+                << predicted(GestureClassifierKind::knn) << ','
                 << predicted(GestureClassifierKind::svm) << '\n';
     }
     corpora_json.push_back({{"track", c.name},

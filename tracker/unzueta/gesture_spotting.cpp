@@ -104,4 +104,14 @@ std::vector<SpottedStretch> spot_gestures(const std::vector<double>& psE,
   return out;
 }
 
+SpottedStretch widen_to_motion(const std::vector<double>& psE, SpottedStretch s, int lo, int hi,
+                               double fraction) {
+  if (fraction <= 0) return s;
+  const double peak = *std::max_element(psE.begin() + s.first, psE.begin() + s.last + 1);
+  const double moving = fraction * fraction * peak;
+  while (s.first > lo && psE[s.first - 1] >= moving) --s.first;
+  while (s.last < hi && psE[s.last + 1] >= moving) ++s.last;
+  return s;
+}
+
 }  // namespace simcap::tracker

@@ -69,4 +69,10 @@ struct SpottedStretch {
 std::vector<SpottedStretch> spot_gestures(const std::vector<double>& psE,
                                           const SpottingParams& params);
 
+// The stretch widened on each side, not past `lo` and `hi`, over the frames whose psE is at least
+// `fraction`^2 of its largest psE inside the stretch: the motion from where its speed first
+// reaches `fraction` of its peak speed to where it falls below it again; 0 keeps the stretch.
+SpottedStretch widen_to_motion(const std::vector<double>& psE, SpottedStretch s, int lo, int hi,
+                               double fraction);
+
 }  // namespace simcap::tracker

@@ -107,6 +107,26 @@ TEST(GestureSpotting, TheEndsDelayIsMeasuredAtTheEnd) {
   EXPECT_TRUE(spot_gestures(pulses(100, {{40, 45}}, 2.0), p).empty());
 }
 
+TEST(GestureSpotting, PathWidensToTheMotionsOnsetAndOffset) {
+  // psE 4 (speed 2.83) on [40, 49], 0.04 (speed 0.28, 10 % of it) on [34, 39] and [50, 52],
+  // 0.005 (2.5 %) on [30, 33]: at 5 % of the peak speed the path runs from 34 to 52, at 20 %
+  // it is the stretch; it never passes the neighbours' bounds.
+  std::vector<double> e = pulses(80, {{40, 49}}, 4.0);
+  for (int i = 34; i <= 52; ++i) {
+    if (i < 40 || i > 49) e[i] = 0.04;
+  }
+  for (int i = 30; i <= 33; ++i) e[i] = 0.005;
+  auto expect = [](SpottedStretch got, int first, int last) {
+    EXPECT_EQ(got.first, first);
+    EXPECT_EQ(got.last, last);
+  };
+  expect(widen_to_motion(e, {40, 49}, 0, 79, 0.05), 34, 52);
+  expect(widen_to_motion(e, {40, 49}, 0, 79, 0.2), 40, 49);
+  expect(widen_to_motion(e, {40, 49}, 0, 79, 0.0), 40, 49);
+  expect(widen_to_motion(e, {40, 49}, 0, 79, 0.02), 30, 52);
+  expect(widen_to_motion(e, {40, 49}, 37, 50, 0.05), 37, 50);
+}
+
 TEST(GestureSpotting, OneFrameJumpIsNotAGestureWithoutItsLargestValue) {
   // A still hand whose tracked position jumps once (psE 6 at frame 40: a 0.12 m step at 30
   // frames/s) besides a gesture at [100, 129]. The thesis' mean reads the jump as an 11-frame
@@ -297,16 +317,28 @@ TEST(GestureSignals, PelvisFrameIgnoresHeading) {
             std::string::npos);
 }
 
+// A synthetic subject's corpus, written frame by frame into its track; the hands' rest places.
+struct Recording {
+  explicit Recording(std::string name) {
+    c.name = std::move(name);
+    c.fps = 30;
+    t.joints = he15_joints();
+  }
+  GestureCorpus c;
+  JointTrack t;
+  int frame = 0;
+  GestureCorpus finish() {
+    c.signals = body_signals(t, c.name);
+    return std::move(c);
+  }
+};
+const Eigen::Vector3d rest(-0.25, -0.1, 0.1), left(0.25, -0.1, 0.05);
+
 // One subject: the right hand draws circles upright ("O") and level ("C") at 1.2 m/s, held still
 // ("down") in between; `scale` and `yaw` make the subject differ.
 GestureCorpus synthetic_subject(const Skeleton& s, double scale, double yaw, std::string name) {
-  GestureCorpus c;
-  c.name = std::move(name);
-  c.fps = 30;
-  JointTrack t;
-  t.joints = he15_joints();
-  const Eigen::Vector3d rest(-0.25, -0.1, 0.1), left(0.25, -0.1, 0.05);
-  int frame = 0;
+  Recording r(std::move(name));
+  auto& [c, t, frame] = r;
   auto hold = [&](int n) {
     c.truth.push_back({"subject", "r_hand", "static", "down", frame, frame + n - 1});
     for (int i = 0; i < n; ++i) t.add_frame(frame++, body_at(s, yaw, {0, 1, 0}, rest, left));
@@ -332,8 +364,7 @@ GestureCorpus synthetic_subject(const Skeleton& s, double scale, double yaw, std
     gesture(label);
     hold(30);
   }
-  c.signals = body_signals(t, c.name);
-  return c;
+  return r.finish();
 }
 
 TEST(GestureEvaluation, TwoSyntheticSubjectsAreSpottedAndRecognised) {
@@ -352,6 +383,61 @@ TEST(GestureEvaluation, TwoSyntheticSubjectsAreSpottedAndRecognised) {
   EXPECT_DOUBLE_EQ(r.poses.accuracy, 1.0);
   EXPECT_NE(testing::error_of([&] { evaluate_gestures({corpora[0]}, {}); }).find("two corpora"),
             std::string::npos);
+}
+
+// One subject: the right hand moves slowly (0.4 m/s, under the spotting threshold) up and back
+// ("hook") or down and back ("bar"), 5 frames each way, then slowly to its left for 5 frames and
+// fast (1.2 m/s) down for 20. Both gestures end alike, and the frames the spotting keeps (the
+// fast stroke and the last slow ones, with the smoothing's reach) are alike too: they differ only
+// in the slow strokes the spotting cuts off. Held still between, the hand goes back slowly.
+GestureCorpus slow_stroke_subject(const Skeleton& s, double scale, std::string name) {
+  Recording r(std::move(name));
+  auto& [c, t, frame] = r;
+  Eigen::Vector3d hand = rest;
+  auto go = [&](const Eigen::Vector3d& to, int n) {
+    const Eigen::Vector3d from = hand;
+    for (int i = 1; i <= n; ++i) {
+      hand = from + (to - from) * static_cast<double>(i) / n;
+      t.add_frame(frame++, body_at(s, 0, {0, 1, 0}, hand, left));
+    }
+  };
+  auto hold = [&](int n) {
+    c.truth.push_back({"subject", "r_hand", "static", "down", frame, frame + n - 1});
+    go(rest, n);
+  };
+  for (const char* label : {"hook", "bar", "bar", "hook"}) {
+    hold(30);
+    c.truth.push_back({"subject", "r_hand", "dynamic", label, frame, frame + 34});
+    const double up = std::string(label) == "hook" ? 1 : -1;
+    const double slow = 0.4 / 30 * 5;
+    go(rest + scale * Eigen::Vector3d(0, up * slow, 0), 5);
+    go(rest, 5);
+    go(rest + scale * Eigen::Vector3d(slow, 0, 0), 5);
+    go(hand + scale * Eigen::Vector3d(0, -1.2 / 30 * 20, 0), 20);
+    go(rest, 60);
+  }
+  hold(30);
+  return r.finish();
+}
+
+TEST(GestureEvaluation, TheSlowStrokesTheSpottingCutsAreRecognised) {
+  const Skeleton s = build_humanoid(BodyParameters{});
+  const std::vector<GestureCorpus> corpora = {slow_stroke_subject(s, 1.0, "one"),
+                                              slow_stroke_subject(s, 0.9, "two")};
+  GestureOptions o;
+  const GestureResults r = evaluate_gestures(corpora, o);
+  ASSERT_EQ(r.matched, 8);
+  for (const auto& [kind, conf] : r.recognition) {
+    EXPECT_DOUBLE_EQ(conf.accuracy, 1.0) << name_of(kGestureClassifiers, kind);
+  }
+  for (const auto& g : r.corpora[0].spotted) {
+    EXPECT_LT(g.path_first, g.first_frame);
+  }
+  // The thesis' path, the spotted stretch alone: the fast strokes are alike.
+  o.path_speed_fraction = 0;
+  const GestureResults thesis = evaluate_gestures(corpora, o);
+  EXPECT_EQ(thesis.matched, 8);
+  EXPECT_LT(thesis.recognition.at(GestureClassifierKind::knn).accuracy, 1.0);
 }
 
 TEST(GestureEvaluation, ALimbNoOtherSubjectUsedIsUnknown) {
