@@ -39,8 +39,9 @@ int run_gesture_loop(LoopArgs& args) {
     if (!fs::exists(r.dataset / "gt" / "gestures.csv")) {
       throw Error(args.run.scene.string() + ": --subjects scores gestures, but " +
                   (r.dataset / "gt" / "gestures.csv").string() +
-                  " is missing: the scene's actor has no gesture motion (e.g. "
-                  "scenes/gestures.yaml)");
+                  " is missing: no gesture lies in the rendered frames (the scene's actors "
+                  "have no gesture motion, as scenes/gestures.yaml's has, or --frames or "
+                  "render.first_frame leave its gestures out)");
     }
     std::printf("%s", loop_summary_text(r).c_str());
     worst_mpjpe = std::max(worst_mpjpe, r.validate.evaluation.mpjpe_mm);
