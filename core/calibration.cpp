@@ -140,17 +140,41 @@ struct YamlEventLines : YAML::EventHandler {
   void OnMapEnd() override {}
 };
 
+// How many flow collections ('[', '{') are still open after `row`, starting from `depth`;
+// brackets inside quotes and comments do not count.
+int flow_depth_after(std::string_view row, int depth) {
+  char quote = 0;
+  for (const char c : row) {
+    if (quote != 0) {
+      if (c == quote) quote = 0;
+    } else if (c == '"' || c == '\'') {
+      quote = c;
+    } else if (c == '#') {
+      break;
+    } else if (c == '[' || c == '{') {
+      ++depth;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return depth;
+}
+
 // A line on which no value starts continues one from an earlier line (a multi-line plain scalar
-// to yaml-cpp), which OpenCV 4.6's reader reads as structure and may loop forever on (a fuzzing
-// finding, tests/fuzz/regressions/calibration_opencv/value_over_two_lines). Blank lines,
-// comments, document markers and lines that only close brackets start none by nature.
+// to yaml-cpp), which OpenCV 4.6's reader reads as structure and may loop forever on (fuzzing
+// findings, tests/fuzz/regressions/calibration_opencv/value_over_two_lines and
+// calibration_easymocap/bracket_continues_value). Blank lines, comments, document markers and
+// lines that only close brackets of an open flow collection start none by nature.
 void check_one_line_values(const fs::path& path, std::string_view text,
                            const std::set<int>& lines) {
+  int depth = 0;
   for (std::size_t start = 0, line = 0; start < text.size(); ++line) {
     const std::size_t end = std::min(text.find('\n', start), text.size());
     const std::string_view row = text.substr(start, end - start);
     start = end + 1;
-    const std::size_t first = row.find_first_not_of(" \t\r]},");
+    const int open = depth;
+    depth = flow_depth_after(row, depth);
+    const std::size_t first = row.find_first_not_of(open > 0 ? " \t\r]}," : " \t\r");
     if (first == std::string_view::npos || row[first] == '#' || row.starts_with("---") ||
         row.starts_with("...") || lines.contains(static_cast<int>(line))) {
       continue;

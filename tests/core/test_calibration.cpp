@@ -179,6 +179,11 @@ TEST(Calibration, MissingAndGarbledFilesAreErrors) {
   write_text_atomic(dir / "nul.yaml", std::string(nul_text, sizeof nul_text - 1));
   const auto nul = error_of([&] { read_opencv_calibration(dir / "nul.yaml"); });
   EXPECT_NE(nul.find("nul.yaml:1: a control character (byte 0x00)"), std::string::npos) << nul;
+  // A ']' that closes nothing continues the plain scalar above it; OpenCV's reader loops on it.
+  write_text_atomic(dir / "bracket.yaml", "%YAML:1.0\n   -$3\n]\n");
+  const auto bracket = error_of([&] { read_opencv_calibration(dir / "bracket.yaml"); });
+  EXPECT_NE(bracket.find("bracket.yaml:3: this line continues a value"), std::string::npos)
+      << bracket;
 }
 
 TEST(Calibration, EasyMocapMissingFieldNamesTheFile) {
