@@ -34,14 +34,14 @@ double iou(int a0, int a1, int b0, int b1) {
 
 // Spotted stretches of every limb, each matched to the true dynamic gesture of its limb with the
 // largest IoU at or above the threshold (each true gesture at most once, best IoU first).
-std::vector<SpottedGesture> spot(const GestureCorpus& c, const GestureOptions& o) {
+// `c`'s own signals are spotted; `smoothed` (them smoothed for recognition) widens each path.
+std::vector<SpottedGesture> spot(const GestureCorpus& c, const BodySignals& smoothed,
+                                 const GestureOptions& o) {
   std::vector<SpottedGesture> out;
   for (int l = 0; l < 2; ++l) {
     const auto energy = spotting_energy(c.signals.hand[l], c.fps, o);
     const std::vector<SpottedStretch> found = spot_gestures(energy, o.spotting);
-    std::vector<Eigen::Vector3d> recognised = c.signals.hand[l];
-    smooth_path(recognised, o.smooth_sigma);
-    const std::vector<double> motion = kinetic_pseudo_energy(recognised, c.fps);
+    const std::vector<double> motion = kinetic_pseudo_energy(smoothed.hand[l], c.fps);
     const int n = static_cast<int>(motion.size());
     for (size_t i = 0; i < found.size(); ++i) {
       const int lo = i > 0 ? found[i - 1].last + 1 : 0;
@@ -151,13 +151,13 @@ GestureResults evaluate_gestures(const std::vector<GestureCorpus>& raw_corpora,
         "gestures: need at least two corpora (each one subject); every corpus is "
         "recognised by classifiers trained on the others");
   }
-  std::vector<std::vector<SpottedGesture>> spotted;
-  for (const auto& c : raw_corpora) {
-    for (const auto& g : c.truth) limb_index(g.limb, c.name);
-    spotted.push_back(spot(c, o));
-  }
   std::vector<GestureCorpus> corpora = raw_corpora;
-  for (auto& c : corpora) smooth_signals(c.signals, o.smooth_sigma);
+  std::vector<std::vector<SpottedGesture>> spotted;
+  for (size_t k = 0; k < corpora.size(); ++k) {
+    for (const auto& g : corpora[k].truth) limb_index(g.limb, corpora[k].name);
+    smooth_signals(corpora[k].signals, o.smooth_sigma);
+    spotted.push_back(spot(raw_corpora[k], corpora[k].signals, o));
+  }
   GestureResults r;
   for (size_t test = 0; test < corpora.size(); ++test) {
     const GestureCorpus& c = corpora[test];
