@@ -31,8 +31,20 @@ TEST(Cli, VersionShowsLibraryVersions) {
 
 TEST(Cli, UnknownCommandFails) {
   std::string out;
-  EXPECT_NE(run_simcap("frobnicate", &out), 0);
-  EXPECT_NE(run_simcap("", &out), 0);
+  EXPECT_EQ(run_simcap("frobnicate", &out), 1);
+  EXPECT_EQ(run_simcap("", &out), 1);
+}
+
+// A bad option is bad input like any other: status 1, as the help texts state, not CLI11's own
+// codes (105 for a bad value, 106 for a missing one), which scripts checking for 1 would miss.
+TEST(Cli, BadOptionsExitWithStatusOne) {
+  const std::string scene = std::string(SIMCAP_SOURCE_DIR) + "/scenes/studio4.yaml";
+  for (const std::string& args : {"render " + scene + " -o never --frames 0", "render " + scene,
+                                  std::string("track /nonexistent/dataset -o never"),
+                                  std::string("validate --no-such-option")}) {
+    std::string out;
+    EXPECT_EQ(run_simcap(args, &out), 1) << args << ":\n" << out;
+  }
 }
 
 // Bounded numbers name the option, what was expected and what was given, before any work.
