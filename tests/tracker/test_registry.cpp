@@ -56,6 +56,27 @@ TEST(Registry, RefusesADatasetTheMethodCannotUseBeforeWritingAnything) {
   EXPECT_EQ(missing_for({.ground_truth = true}, one), "no gt/joints3d.csv");
 }
 
+// An interrupted render holds its first frames only: tracking them would pass for the whole.
+TEST(Registry, RefusesADatasetWhoseRenderDidNotFinish) {
+  TempDir dir;
+  testing::write_capsule_dataset(dir / "ds", {.frames = 2, .cameras = 2});
+  write_text_atomic(dir / "ds" / "meta.json",
+                    "{\"simcap_version\": \"0.1.0\", \"complete\": false}\n");
+  std::string log;
+  EXPECT_EQ(run_simcap("track " + (dir / "ds").string() + " -o " + (dir / "t").string() +
+                           " --init auto --silhouettes bgsub",
+                       &log),
+            1);
+  EXPECT_NE(log.find("meta.json: \"complete\": false: the render of this dataset did not finish"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("--resume"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir / "t"));
+  write_text_atomic(dir / "ds" / "meta.json",
+                    "{\"simcap_version\": \"0.1.0\", \"complete\": true}\n");
+  EXPECT_NO_THROW(Dataset(dir / "ds"));
+}
+
 TEST(TrackFolder, ReplacesTheTrackOnlyWhenCommitted) {
   TempDir dir;
   const fs::path track = dir / "track";
