@@ -90,7 +90,7 @@ void add_bench_ik(CLI::App& bench, Action& action) {
   cmd->footer(
       "Examples:\n"
       "  simcap bench ik\n"
-      "  simcap bench ik cmu_131_01_start_walk_stop.bvh --repeat 5\n"
+      "  simcap bench ik models/assets/cmu_131_01_start_walk_stop.bvh --repeat 5\n"
       "Each method runs on the same skeleton, limits and pelvis estimate (weights 1,1,0); the\n"
       "time is the median solve time per frame. The last line is\n"
       "ms_per_frame sik=<x> ccd=<y> dls=<z>.");

@@ -1,11 +1,16 @@
 // The simcap program itself: help for every command, honest "not built yet", real versions.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <regex>
+#include <set>
+
 #include "tests/support/temp_dir.h"
 
 namespace simcap {
 namespace {
 
+namespace fs = std::filesystem;
 using simcap::testing::run_simcap;
 
 TEST(Cli, HelpListsEveryCommand) {
@@ -17,6 +22,40 @@ TEST(Cli, HelpListsEveryCommand) {
     std::string sub;
     EXPECT_EQ(run_simcap(std::string(cmd) + " --help", &sub), 0) << cmd;
     EXPECT_NE(sub.find("Example"), std::string::npos) << cmd << ":\n" << sub;
+  }
+}
+
+// An example is run from the repository's root as printed: a shipped file it names (a scene, a
+// sweep, a clip) carries its folder and exists, so copying the line works.
+TEST(Cli, HelpExamplesNameShippedFilesByTheirPath) {
+  const fs::path root = SIMCAP_SOURCE_DIR;
+  std::set<std::string> shipped;
+  for (const char* folder : {"scenes", "stress", "stress/collections", "models/assets"}) {
+    for (const auto& entry : fs::directory_iterator(root / folder)) {
+      shipped.insert(entry.path().filename().string());
+    }
+  }
+  const std::regex file_name(R"([A-Za-z0-9_./-]+\.(yaml|bvh|x3d|urdf|amc|asf)\b)");
+  for (const char* cmd :
+       {"render",          "track",        "validate",    "loop",        "demo",
+        "stress",          "bench render", "bench track", "bench ik",    "bench collect",
+        "model info",      "model urdf",   "model mesh",  "motion dump", "motion retarget",
+        "motion generate", "ik-eval",      "gestures",    "export",      "detections",
+        "collect"}) {
+    std::string help;
+    ASSERT_EQ(run_simcap(std::string(cmd) + " --help", &help), 0) << cmd;
+    for (std::sregex_iterator it(help.begin(), help.end(), file_name), end; it != end; ++it) {
+      const fs::path named = it->str();
+      if (named.has_parent_path()) {
+        const std::string top = named.begin()->string();
+        if (top == "scenes" || top == "stress" || top == "models") {
+          EXPECT_TRUE(fs::exists(root / named)) << cmd << ": " << named;
+        }
+      } else {
+        EXPECT_EQ(shipped.count(named.string()), 0u)
+            << cmd << ": the shipped " << named << " without its folder";
+      }
+    }
   }
 }
 
