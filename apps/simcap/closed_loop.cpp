@@ -174,7 +174,7 @@ LoopRun loop_run_of(const LoopConfig& c, const fs::path& sweep_file, bool quiet)
   run.render.overrides = c.scene_overrides;
   run.validate.failure_threshold_mm = c.failure_threshold_mm;
   run.quiet = quiet;
-  apply_sweep_track_options(c.track_options, sweep_file, run.track);
+  apply_sweep_track_options(c.track_options, c.track_option_lines, sweep_file, run.track);
   if (!c.detector.name.empty()) {
     const auto* d = std::find_if(kLoopDetectors.begin(), kLoopDetectors.end(),
                                  [&](const auto& e) { return e.first == c.detector.name; });

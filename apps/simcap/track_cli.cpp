@@ -362,11 +362,14 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
 }
 
 void apply_sweep_track_options(const std::vector<std::pair<std::string, std::string>>& keys,
+                               const std::vector<int>& lines,
                                const std::filesystem::path& sweep_file,
                                tracker::TrackOptions& options) {
   CLI::App parser;
   add_track_options(&parser, options, TrackOptionScope::track);
-  for (const auto& [key, value] : keys) {
+  for (size_t i = 0; i < keys.size(); ++i) {
+    const auto& [key, value] = keys[i];
+    const int line = i < lines.size() ? lines[i] : 0;
     std::string_view flag;
     std::string known;
     for (const auto& [k, f] : kSweepKeys) {
@@ -374,14 +377,14 @@ void apply_sweep_track_options(const std::vector<std::pair<std::string, std::str
       known += (known.empty() ? "" : ", ") + std::string(k);
     }
     if (flag.empty()) {
-      throw_input_error(sweep_file, 0, "track." + key,
+      throw_input_error(sweep_file, line, "track." + key,
                         "unknown tracker option; expected one of " + known);
     }
     try {
       // CLI11 takes the arguments in reverse order.
       parser.parse(std::vector<std::string>{value, std::string(flag)});
     } catch (const CLI::ParseError& e) {
-      throw_input_error(sweep_file, 0, "track." + key, e.what());
+      throw_input_error(sweep_file, line, "track." + key, e.what());
     }
   }
 }

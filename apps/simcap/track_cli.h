@@ -20,8 +20,10 @@ enum class TrackOptionScope {
 void add_track_options(CLI::App* cmd, tracker::TrackOptions& options, TrackOptionScope scope);
 
 // Applies a sweep point's track.* keys ("silhouettes" = "bgsub", "voxel_m" = "0.03") through the
-// same declarations; an unknown key or a bad value is an Error naming `sweep_file` and the key.
+// same declarations; an unknown key or a bad value is an Error naming `sweep_file`, the key's line
+// there (`lines`, one per key) and the key.
 void apply_sweep_track_options(const std::vector<std::pair<std::string, std::string>>& keys,
+                               const std::vector<int>& lines,
                                const std::filesystem::path& sweep_file,
                                tracker::TrackOptions& options);
 
