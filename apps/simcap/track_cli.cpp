@@ -361,6 +361,25 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
   cmd->add_flag("-q,--quiet", o.quiet, "No progress on stderr");
 }
 
+void refuse_other_methods_inputs(CLI::App* cmd, const tracker::TrackOptions& options) {
+  cmd->parse_complete_callback([cmd, &options] {
+    using tracker::TrackMethod;
+    const std::pair<const char*, TrackMethod> inputs[] = {
+        {"--effectors", TrackMethod::sik}, {"--detections", TrackMethod::triangulate}};
+    for (const auto& [flag, reader] : inputs) {
+      if (cmd->count(flag) == 0 || options.method == reader) continue;
+      const std::string wanted(name_of(tracker::kTrackMethods, reader));
+      throw CLI::ValidationError(flag,
+                                 "only --method " + wanted + " reads it, and the method is " +
+                                     std::string(name_of(tracker::kTrackMethods, options.method)) +
+                                     (options.method == TrackMethod::automatic
+                                          ? " (moschini with 2+ cameras, monocular with one)"
+                                          : "") +
+                                     "; add --method " + wanted + ", or leave " + flag + " out");
+    }
+  });
+}
+
 void apply_sweep_track_options(const std::vector<std::pair<std::string, std::string>>& keys,
                                const std::vector<int>& lines,
                                const std::filesystem::path& sweep_file,
