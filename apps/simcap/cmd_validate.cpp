@@ -67,6 +67,7 @@ void add_validate(CLI::App& app, Action& action) {
       ".csv (validate/README.md)");
   add_choice(cmd, "--layout", args.layout, kKeypointLayouts,
              "Keypoint layout of --detections (default: from the keypoint count or names)")
+      ->default_str("")
       ->each([&](const std::string&) { args.layout_given = true; })
       ->needs(detections);
   cmd->add_option("--actor", args.detection.actor,

@@ -59,6 +59,18 @@ TEST(Cli, HelpExamplesNameShippedFilesByTheirPath) {
   }
 }
 
+// A default shown in a help text is the one the command uses.
+TEST(Cli, HelpShowsTheDefaultsInUse) {
+  std::string help;
+  ASSERT_EQ(run_simcap("validate --help", &help), 0);
+  EXPECT_EQ(help.find("=coco17"), std::string::npos) << help;  // read from the detections
+  EXPECT_NE(help.find("(default: from the keypoint count or names)"), std::string::npos) << help;
+  ASSERT_EQ(run_simcap("demo --help", &help), 0);
+  EXPECT_NE(help.find("--frames INT:> 0=240        Frames to render\n"), std::string::npos) << help;
+  ASSERT_EQ(run_simcap("render --help", &help), 0);
+  EXPECT_NE(help.find("gt/keypoints_coco.json"), std::string::npos) << help;
+}
+
 TEST(Cli, VersionShowsLibraryVersions) {
   std::string out;
   ASSERT_EQ(run_simcap("version", &out), 0);
