@@ -230,7 +230,7 @@ void add_ik_eval(CLI::App& app, Action& action) {
       ->capture_default_str();
   add_sik_cue_options(cmd, args.pelvis_travel, args.spine_bend, "sik, tgbsik: ");
   cmd->add_option("--frames", args.frames, "Evaluate only the first N frames (default: all)")
-      ->check(non_negative_number());
+      ->check(positive_number());
   cmd->footer(
       "Examples:\n"
       "  simcap ik-eval models/assets/cmu_131_01_start_walk_stop.bvh --method sik -o "

@@ -109,6 +109,8 @@ TEST(Cli, OutOfRangeNumbersSayWhatWasExpected) {
        "--frames: expected a number greater than 0, got 'x'"},
       {"motion generate walk_path -o never.bvh --speed -1",
        "--speed: expected a number greater than 0"},
+      {"ik-eval " + bvh + " --frames 0 -o never",  // as render's and track's: 0 is not "all"
+       "--frames: expected a number greater than 0, got '0'"},
       {"ik-eval " + bvh + " --pelvis-weights 1,-1,0 -o never",
        "--pelvis-weights: expected a number of at least 0, got '-1'"}};
   for (const auto& [args, message] : cases) {
