@@ -355,7 +355,8 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
       ->delimiter(',')
       ->check(non_negative_number());
   cmd->add_option("--seed", o.seed, "sik: seed of that noise; monocular: seed of the particles")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(non_negative_number());
   cmd->add_option("--frames", o.max_frames, "Track the first N frames only (default: all)")
       ->check(positive_number());
   cmd->add_flag("-q,--quiet", o.quiet, "No progress on stderr");

@@ -109,6 +109,11 @@ TEST(Cli, OutOfRangeNumbersSayWhatWasExpected) {
        "--frames: expected a number greater than 0, got 'x'"},
       {"motion generate walk_path -o never.bvh --speed -1",
        "--speed: expected a number greater than 0"},
+      // CLI11 alone reads a negative unsigned seed as 2^64 - 1.
+      {"render " + scene + " -o never --seed -1",
+       "--seed: expected a number of at least 0, got '-1'"},
+      {"track " + std::string(SIMCAP_SOURCE_DIR) + " -o never --seed -2",
+       "--seed: expected a number of at least 0, got '-2'"},
       {"ik-eval " + bvh + " --frames 0 -o never",  // as render's and track's: 0 is not "all"
        "--frames: expected a number greater than 0, got '0'"},
       {"ik-eval " + bvh + " --pelvis-weights 1,-1,0 -o never",
