@@ -1,5 +1,8 @@
 #include "models/motion_source.h"
 
+#include <cctype>
+#include <string>
+
 #include "core/error.h"
 #include "models/asf_amc.h"
 #include "models/bvh.h"
@@ -9,6 +12,14 @@
 namespace simcap {
 
 BvhClip read_motion_clip(const MotionSource& source) {
+  // An AMC file holds no skeleton; read as BVH it would fail on its first line for another reason.
+  std::string extension = source.bvh.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension == ".amc") {
+    throw Error(source.bvh.string() +
+                ": an Acclaim AMC motion needs its skeleton: give the ASF file with --asf "
+                "(or asf: beside amc: in a scene's motion)");
+  }
   if (!source.bvh.empty()) {
     return read_bvh(source.bvh, {.metres_per_unit = source.bvh_metres_per_unit});
   }

@@ -83,6 +83,7 @@ void apply(LoopConfig& c, const SweepSetting& s, const fs::path& dir, const fs::
   } else if (s.key.rfind("track.", 0) == 0) {
     if (s.key.size() == 6) throw_input_error(file, s.line, s.key, "expected track.<option>");
     c.track_options.emplace_back(s.key.substr(6), s.value);
+    c.track_option_lines.push_back(s.line);
   } else if (s.key == "title" || s.key == "set" || s.key == "track" || s.key == "vary" ||
              s.key == "label" || s.key.empty() || s.key.find('=') != std::string::npos) {
     throw_input_error(file, s.line, s.key,
@@ -91,6 +92,7 @@ void apply(LoopConfig& c, const SweepSetting& s, const fs::path& dir, const fs::
                       "as rig.count");
   } else {
     c.scene_overrides.push_back(s.key + "=" + s.value);
+    c.scene_override_lines.push_back(s.line);
   }
 }
 

@@ -32,6 +32,9 @@ struct LoopConfig {
   // Tracker option name (method, silhouettes, init, voxel_m, ...) and value text, in file order;
   // a later entry for the same name wins.
   std::vector<std::pair<std::string, std::string>> track_options;
+  // The sweep file's line of each scene override and tracker option above, in their order, for
+  // the errors of the loaders that check them later.
+  std::vector<int> scene_override_lines, track_option_lines;
   double failure_threshold_mm = 100.0;
   DetectorConfig detector;
 };

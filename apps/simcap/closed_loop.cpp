@@ -138,6 +138,7 @@ std::string loop_summary_text(const LoopResult& r) {
 void add_loop_options(CLI::App* cmd, LoopRun& run, LoopCliOptions& cli) {
   add_render_options(cmd, run.render, cli.seed);
   add_track_options(cmd, run.track, TrackOptionScope::loop);
+  refuse_other_methods_inputs(cmd, run.track);
   add_scoring_options(cmd, run.validate, cli.scoring);
   add_choice(cmd, "--detector", run.detector, kLoopDetectors,
              "2D keypoints triangulated by --method triangulate instead of a tracker reading the "
@@ -174,7 +175,7 @@ LoopRun loop_run_of(const LoopConfig& c, const fs::path& sweep_file, bool quiet)
   run.render.overrides = c.scene_overrides;
   run.validate.failure_threshold_mm = c.failure_threshold_mm;
   run.quiet = quiet;
-  apply_sweep_track_options(c.track_options, sweep_file, run.track);
+  apply_sweep_track_options(c.track_options, c.track_option_lines, sweep_file, run.track);
   if (!c.detector.name.empty()) {
     const auto* d = std::find_if(kLoopDetectors.begin(), kLoopDetectors.end(),
                                  [&](const auto& e) { return e.first == c.detector.name; });

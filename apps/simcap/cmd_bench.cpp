@@ -61,6 +61,7 @@ void add_bench_track(CLI::App& bench, Action& action) {
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   add_track_options(cmd, options.track, TrackOptionScope::loop);
+  refuse_other_methods_inputs(cmd, options.track);
   cmd->footer(
       "Examples:\n"
       "  simcap bench track out/studio4\n"
@@ -90,7 +91,7 @@ void add_bench_ik(CLI::App& bench, Action& action) {
   cmd->footer(
       "Examples:\n"
       "  simcap bench ik\n"
-      "  simcap bench ik cmu_131_01_start_walk_stop.bvh --repeat 5\n"
+      "  simcap bench ik models/assets/cmu_131_01_start_walk_stop.bvh --repeat 5\n"
       "Each method runs on the same skeleton, limits and pelvis estimate (weights 1,1,0); the\n"
       "time is the median solve time per frame. The last line is\n"
       "ms_per_frame sik=<x> ccd=<y> dls=<z>.");

@@ -46,7 +46,7 @@ void add_demo(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", args.out, "Output folder: dataset/, track/, report/")
       ->capture_default_str();
   add_loop_options(cmd, args.run, args.cli);
-  cmd->get_option("--frames")->capture_default_str();
+  cmd->get_option("--frames")->capture_default_str()->description("Frames to render");
   cmd->footer(
       "The default scene is scenes/studio4.yaml: a 4 m x 4 m room, four VGA cameras in its\n"
       "upper corners, one actor walking the CMU 131_01 clip. Prints the metrics and the path of\n"

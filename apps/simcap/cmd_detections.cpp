@@ -5,6 +5,7 @@
 
 #include "apps/simcap/choice_option.h"
 #include "apps/simcap/commands.h"
+#include "apps/simcap/number_checks.h"
 #include "validate/noisy_detections.h"
 
 namespace simcap::cli {
@@ -30,7 +31,9 @@ void add_detections(CLI::App& app, Action& action) {
                   "Standard deviation of the noise added to each pixel coordinate")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  cmd->add_option("--seed", o->noise.seed, "Seed of the noise")->capture_default_str();
+  cmd->add_option("--seed", o->noise.seed, "Seed of the noise")
+      ->capture_default_str()
+      ->check(non_negative_number());
   cmd->add_flag("-q,--quiet", o->quiet, "No summary on stderr");
   cmd->footer(
       "Every actor with pixels in an image is one person (score 1); each keypoint with ground\n"

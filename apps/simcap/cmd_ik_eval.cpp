@@ -230,16 +230,19 @@ void add_ik_eval(CLI::App& app, Action& action) {
       ->capture_default_str();
   add_sik_cue_options(cmd, args.pelvis_travel, args.spine_bend, "sik, tgbsik: ");
   cmd->add_option("--frames", args.frames, "Evaluate only the first N frames (default: all)")
-      ->check(non_negative_number());
+      ->check(positive_number());
   cmd->footer(
       "Examples:\n"
-      "  simcap ik-eval cmu_131_01_start_walk_stop.bvh --method sik -o out/ik/sik_walk\n"
-      "  simcap ik-eval cmu_131_03_start_hop_stop.bvh --method dls --damping 0.075 -o out/ik/dls\n"
-      "  simcap ik-eval cmu_131_03_start_hop_stop.bvh --method all -o out/ik/table10\n"
-      "  simcap ik-eval cmu_131_01_start_walk_stop.bvh --method sik --middle-targets -o "
-      "out/ik/mid\n"
-      "  simcap ik-eval cmu_131_01_start_walk_stop.bvh --method sik --pelvis-travel 0 "
-      "--spine-bend thesis -o out/ik/thesis_sik   (the thesis' SIK)\n"
+      "  simcap ik-eval models/assets/cmu_131_01_start_walk_stop.bvh --method sik -o "
+      "out/ik/sik_walk\n"
+      "  simcap ik-eval models/assets/cmu_131_03_start_hop_stop.bvh --method dls --damping 0.075 "
+      "-o out/ik/dls\n"
+      "  simcap ik-eval models/assets/cmu_131_03_start_hop_stop.bvh --method all -o "
+      "out/ik/table10\n"
+      "  simcap ik-eval models/assets/cmu_131_01_start_walk_stop.bvh --method sik "
+      "--middle-targets -o out/ik/mid\n"
+      "  simcap ik-eval models/assets/cmu_131_01_start_walk_stop.bvh --method sik "
+      "--pelvis-travel 0 --spine-bend thesis -o out/ik/thesis_sik   (the thesis' SIK)\n"
       "Feeds the clip's pelvis, skull base, wrists and ankles frame by frame to the solver on the\n"
       "clip's own skeleton and scores 22 joints (all but those below wrists and ankles; CMU's two\n"
       "pelvis bones once). pos_err = RMS over frames of (sum of joint position errors) /\n"

@@ -126,7 +126,8 @@ void add_motion(CLI::App& app, Action& action) {
   d->add_option("-o,--output", o->output, "CSV file to write")->required();
   add_unit(d);
   d->footer(
-      "Examples:\n  simcap motion dump cmu_131_01_start_walk_stop.bvh -o joints.csv\n"
+      "Examples:\n"
+      "  simcap motion dump models/assets/cmu_131_01_start_walk_stop.bvh -o joints.csv\n"
       "  simcap motion dump 131_01.amc --asf 131.asf -o joints.csv");
   d->callback([&action, o] { action = [o] { return dump(*o); }; });
 
@@ -147,7 +148,9 @@ void add_motion(CLI::App& app, Action& action) {
   r->add_flag("--no-floor", o->no_floor, "Keep the clip's height instead of putting feet on y = 0");
   add_unit(r);
   r->footer(
-      "Example:\n  simcap motion retarget cmu_131_01_start_walk_stop.bvh -o walk.bvh --fps 30");
+      "Example:\n"
+      "  simcap motion retarget models/assets/cmu_131_01_start_walk_stop.bvh -o walk.bvh --fps "
+      "30");
   r->callback([&action, o] { action = [o] { return retarget(*o); }; });
 
   auto* g = motion->add_subcommand(

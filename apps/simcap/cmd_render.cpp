@@ -46,7 +46,8 @@ void add_render(CLI::App& app, Action& action) {
       "  simcap render scenes/studio4.yaml -o out/studio4 --resume\n"
       "  simcap render scenes/studio4.yaml -o out/two --cameras cam00,cam02\n"
       "Writes scene.yaml, meta.json, calibration/, background/, camNN/{rgb,depth,mask,parts}/,\n"
-      "parts.json and gt/{joints3d,joints2d,angles}.csv (layout: ARCHITECTURE.md).");
+      "parts.json, gt/{joints3d,joints2d,angles,joints3d_h36m17}.csv, gt/keypoints_coco.json\n"
+      "and, for a gesture corpus, gt/gestures.csv (layout: docs/ARCHITECTURE.md).");
   cmd->callback([&action] { action = [] { return run_render(args); }; });
 }
 

@@ -30,6 +30,26 @@ RenderKey render_key(const LoopConfig& c) {
   return {c.scene, c.frames, c.seed, c.motion, c.scene_overrides};
 }
 
+// Loads the point's scene with its overrides; a bad override is named with its line in the sweep
+// file, which the scene loader does not know.
+void check_scene_overrides(const LoopConfig& c, const fs::path& sweep_file) {
+  try {
+    load_scene(c.scene, c.scene_overrides);
+    return;
+  } catch (const Error&) {
+  }
+  // The first override after which the scene no longer loads is the one to blame.
+  for (size_t n = 0; n <= c.scene_overrides.size(); ++n) {
+    try {
+      load_scene(c.scene, {c.scene_overrides.begin(), c.scene_overrides.begin() + n});
+    } catch (const Error& e) {
+      if (n == 0) throw;
+      const int line = n <= c.scene_override_lines.size() ? c.scene_override_lines[n - 1] : 0;
+      throw_input_error(sweep_file, line, "", e.what());
+    }
+  }
+}
+
 int run_stress(const StressArgs& args) {
   SweepSpec spec = load_sweep(args.sweep);
   if (args.frames) spec.base.frames = *args.frames;
@@ -37,7 +57,7 @@ int run_stress(const StressArgs& args) {
   // Every point's scene and tracker options are checked before the first one runs.
   for (const auto& p : points) {
     loop_run_of(p.config, args.sweep, args.quiet);
-    load_scene(p.config.scene, p.config.scene_overrides);
+    check_scene_overrides(p.config, args.sweep);
   }
   std::map<RenderKey, fs::path> rendered;
   const SweepPointRunner run = [&](const SweepPoint& point, const fs::path& dir) {

@@ -18,6 +18,7 @@ void add_track(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", *out, "Track folder to write (joints3d.csv, diagnostics/)")
       ->required();
   add_track_options(cmd, *options, TrackOptionScope::track);
+  refuse_other_methods_inputs(cmd, *options);
   cmd->footer(
       "Examples:\n"
       "  simcap track out/studio4 -o out/track\n"

@@ -1,10 +1,12 @@
 #include <cstdio>
 #include <filesystem>
+#include <string>
 
 #include "apps/simcap/choice_option.h"
 #include "apps/simcap/commands.h"
 #include "apps/simcap/fail_above.h"
 #include "apps/simcap/option_groups.h"
+#include "core/error.h"
 #include "validate/keypoint_report.h"
 #include "validate/summary_text.h"
 #include "validate/validate_job.h"
@@ -35,7 +37,8 @@ int run_detection_validate(const ValidateArgs& args) {
 
 int run_validate(const ValidateArgs& args) {
   if (args.track.empty() == args.detections.empty()) {
-    throw CLI::ValidationError("validate", "give either TRACK or --detections FILE");
+    throw Error(std::string("validate: give either TRACK or --detections FILE (got ") +
+                (args.track.empty() ? "neither" : "both") + ")");
   }
   if (!args.detections.empty()) return run_detection_validate(args);
   ValidateOptions options = args.options;
@@ -64,6 +67,7 @@ void add_validate(CLI::App& app, Action& action) {
       ".csv (validate/README.md)");
   add_choice(cmd, "--layout", args.layout, kKeypointLayouts,
              "Keypoint layout of --detections (default: from the keypoint count or names)")
+      ->default_str("")
       ->each([&](const std::string&) { args.layout_given = true; })
       ->needs(detections);
   cmd->add_option("--actor", args.detection.actor,

@@ -36,7 +36,8 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // CLI11's own codes (105, 106, ...) would break the documented "1: bad input"; --help is 0.
+    return app.exit(e) == 0 ? 0 : 1;
   }
   try {
     return action ? action() : 0;

@@ -18,9 +18,12 @@ void add_render_options(CLI::App* cmd, RenderOptions& options, SeedOption& seed)
                   "ASF skeleton of the --motion AMC file (Acclaim, as the CMU database ships)")
       ->check(CLI::ExistingFile)
       ->needs(motion);
-  seed.option = cmd->add_option(
-      "--seed", seed.value,
-      "Seed of anti-aliasing jitter and sensor noise (default: the scene's render.seed)");
+  // CLI11 reads "-1" into an unsigned seed as 2^64 - 1; a sign is a mistake, not that seed.
+  seed.option =
+      cmd->add_option("--seed", seed.value,
+                      "Seed of anti-aliasing jitter and sensor noise (default: the scene's "
+                      "render.seed)")
+          ->check(non_negative_number());
   cmd->add_option("--set", options.overrides,
                   "Scene override key.path=value, repeatable (e.g. --set rig.count=6)");
   cmd->add_flag("--resume", options.resume,

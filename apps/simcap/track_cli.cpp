@@ -355,18 +355,41 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
       ->delimiter(',')
       ->check(non_negative_number());
   cmd->add_option("--seed", o.seed, "sik: seed of that noise; monocular: seed of the particles")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(non_negative_number());
   cmd->add_option("--frames", o.max_frames, "Track the first N frames only (default: all)")
       ->check(positive_number());
   cmd->add_flag("-q,--quiet", o.quiet, "No progress on stderr");
 }
 
+void refuse_other_methods_inputs(CLI::App* cmd, const tracker::TrackOptions& options) {
+  cmd->parse_complete_callback([cmd, &options] {
+    using tracker::TrackMethod;
+    const std::pair<const char*, TrackMethod> inputs[] = {
+        {"--effectors", TrackMethod::sik}, {"--detections", TrackMethod::triangulate}};
+    for (const auto& [flag, reader] : inputs) {
+      if (cmd->count(flag) == 0 || options.method == reader) continue;
+      const std::string wanted(name_of(tracker::kTrackMethods, reader));
+      throw CLI::ValidationError(flag,
+                                 "only --method " + wanted + " reads it, and the method is " +
+                                     std::string(name_of(tracker::kTrackMethods, options.method)) +
+                                     (options.method == TrackMethod::automatic
+                                          ? " (moschini with 2+ cameras, monocular with one)"
+                                          : "") +
+                                     "; add --method " + wanted + ", or leave " + flag + " out");
+    }
+  });
+}
+
 void apply_sweep_track_options(const std::vector<std::pair<std::string, std::string>>& keys,
+                               const std::vector<int>& lines,
                                const std::filesystem::path& sweep_file,
                                tracker::TrackOptions& options) {
   CLI::App parser;
   add_track_options(&parser, options, TrackOptionScope::track);
-  for (const auto& [key, value] : keys) {
+  for (size_t i = 0; i < keys.size(); ++i) {
+    const auto& [key, value] = keys[i];
+    const int line = i < lines.size() ? lines[i] : 0;
     std::string_view flag;
     std::string known;
     for (const auto& [k, f] : kSweepKeys) {
@@ -374,14 +397,14 @@ void apply_sweep_track_options(const std::vector<std::pair<std::string, std::str
       known += (known.empty() ? "" : ", ") + std::string(k);
     }
     if (flag.empty()) {
-      throw_input_error(sweep_file, 0, "track." + key,
+      throw_input_error(sweep_file, line, "track." + key,
                         "unknown tracker option; expected one of " + known);
     }
     try {
       // CLI11 takes the arguments in reverse order.
       parser.parse(std::vector<std::string>{value, std::string(flag)});
     } catch (const CLI::ParseError& e) {
-      throw_input_error(sweep_file, 0, "track." + key, e.what());
+      throw_input_error(sweep_file, line, "track." + key, e.what());
     }
   }
 }

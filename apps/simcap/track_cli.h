@@ -19,9 +19,16 @@ enum class TrackOptionScope {
 
 void add_track_options(CLI::App* cmd, tracker::TrackOptions& options, TrackOptionScope scope);
 
+// Refuses, once `cmd` is parsed, an option that is another method's input (--effectors: sik's,
+// --detections: triangulate's): with a method that does not read it, it would be ignored and the
+// run would measure something else than was asked.
+void refuse_other_methods_inputs(CLI::App* cmd, const tracker::TrackOptions& options);
+
 // Applies a sweep point's track.* keys ("silhouettes" = "bgsub", "voxel_m" = "0.03") through the
-// same declarations; an unknown key or a bad value is an Error naming `sweep_file` and the key.
+// same declarations; an unknown key or a bad value is an Error naming `sweep_file`, the key's line
+// there (`lines`, one per key) and the key.
 void apply_sweep_track_options(const std::vector<std::pair<std::string, std::string>>& keys,
+                               const std::vector<int>& lines,
                                const std::filesystem::path& sweep_file,
                                tracker::TrackOptions& options);
 

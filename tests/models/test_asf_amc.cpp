@@ -247,6 +247,27 @@ TEST(AsfAmc, CommandsDumpAndRenderIt) {
       << out;
 }
 
+// An AMC file given where a BVH is read (no --asf) is named for what it lacks, its skeleton.
+TEST(AsfAmc, AnAmcWithoutItsSkeletonSaysSo) {
+  TempDir dir;
+  write_text_atomic(dir / "t.amc", amc_text(cmu_like_bones(), 2));
+  const std::string message =
+      (dir / "t.amc").string() + ": an Acclaim AMC motion needs its skeleton: give the ASF file";
+  std::string out;
+  EXPECT_EQ(testing::run_simcap("render " SIMCAP_SOURCE_DIR "/scenes/studio4.yaml -o " +
+                                    (dir / "e").string() + " --frames 1 --quiet --motion " +
+                                    (dir / "t.amc").string(),
+                                &out),
+            1);
+  EXPECT_NE(out.find(message), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir / "e" / "meta.json"));
+  EXPECT_EQ(
+      testing::run_simcap(
+          "motion dump " + (dir / "t.amc").string() + " -o " + (dir / "j.csv").string(), &out),
+      1);
+  EXPECT_NE(out.find(message), std::string::npos) << out;
+}
+
 std::string amc_error(const std::string& amc) {
   return error_of([&] { parse_asf_amc(asf_text(cmu_like_bones()), "t.asf", amc, "t.amc"); });
 }

@@ -56,6 +56,55 @@ TEST(Registry, RefusesADatasetTheMethodCannotUseBeforeWritingAnything) {
   EXPECT_EQ(missing_for({.ground_truth = true}, one), "no gt/joints3d.csv");
 }
 
+// --effectors and --detections choose sik's and triangulate's input: with another method (or the
+// default, which picks moschini or monocular) they would be ignored without a word.
+TEST(Registry, RefusesAnotherMethodsInputOption) {
+  TempDir dir;
+  testing::write_capsule_dataset(dir / "ds", {.frames = 2, .cameras = 2});
+  const std::string track = "track " + (dir / "ds").string() + " -o " + (dir / "t").string();
+  std::string log;
+  EXPECT_EQ(run_simcap(track + " --effectors depth", &log), 1);
+  EXPECT_NE(log.find("--effectors: only --method sik reads it, and the method is auto (moschini "
+                     "with 2+ cameras, monocular with one); add --method sik, or leave "
+                     "--effectors out"),
+            std::string::npos)
+      << log;
+  EXPECT_EQ(run_simcap(track + " --method sik --detections det.json", &log), 1);
+  EXPECT_NE(log.find("--detections: only --method triangulate reads it, and the method is sik;"),
+            std::string::npos)
+      << log;
+  EXPECT_EQ(run_simcap("loop " + std::string(SIMCAP_SOURCE_DIR) +
+                           "/scenes/studio4.yaml -o never --method moschini --effectors mono",
+                       &log),
+            1);
+  EXPECT_NE(log.find("--effectors: only --method sik reads it, and the method is moschini;"),
+            std::string::npos)
+      << log;
+  EXPECT_FALSE(fs::exists(dir / "t"));
+  EXPECT_EQ(run_simcap(track + " --method sik --effectors gt -q", &log), 0) << log;
+}
+
+// An interrupted render holds its first frames only: tracking them would pass for the whole.
+TEST(Registry, RefusesADatasetWhoseRenderDidNotFinish) {
+  TempDir dir;
+  testing::write_capsule_dataset(dir / "ds", {.frames = 2, .cameras = 2});
+  write_text_atomic(dir / "ds" / "meta.json",
+                    "{\"simcap_version\": \"0.1.0\", \"complete\": false}\n");
+  std::string log;
+  EXPECT_EQ(run_simcap("track " + (dir / "ds").string() + " -o " + (dir / "t").string() +
+                           " --init auto --silhouettes bgsub",
+                       &log),
+            1);
+  EXPECT_NE(log.find("meta.json: \"complete\": false: the render of this dataset did not finish"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("--resume"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir / "t"));
+  write_text_atomic(dir / "ds" / "meta.json",
+                    "{\"simcap_version\": \"0.1.0\", \"complete\": true}\n");
+  EXPECT_NO_THROW(Dataset(dir / "ds"));
+}
+
 TEST(TrackFolder, ReplacesTheTrackOnlyWhenCommitted) {
   TempDir dir;
   const fs::path track = dir / "track";

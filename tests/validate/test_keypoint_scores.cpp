@@ -224,8 +224,19 @@ TEST_F(KeypointScoresDataset, BadDetectionsWriteNothing) {
   EXPECT_NE(out.find((dir / "det.json").string() + ": [0].keypoints: 3 numbers"), std::string::npos)
       << out;
   EXPECT_FALSE(fs::exists(dir / "r"));
-  EXPECT_NE(run_simcap("validate " + dataset().string() + " -o " + (dir / "r").string(), &out), 0);
-  EXPECT_NE(out.find("give either TRACK or --detections FILE"), std::string::npos) << out;
+  // A user's mistake, not an internal error: status 1 and the message says which.
+  EXPECT_EQ(run_simcap("validate " + dataset().string() + " -o " + (dir / "r").string(), &out), 1);
+  EXPECT_NE(
+      out.find("simcap: error: validate: give either TRACK or --detections FILE (got neither)"),
+      std::string::npos)
+      << out;
+  EXPECT_EQ(
+      run_simcap("validate " + dataset().string() + " " + (dir / "t").string() + " --detections " +
+                     (dir / "det.json").string() + " -o " + (dir / "r").string(),
+                 &out),
+      1);
+  EXPECT_NE(out.find("(got both)"), std::string::npos) << out;
+  EXPECT_FALSE(fs::exists(dir / "r"));
 }
 
 }  // namespace

@@ -71,7 +71,12 @@ TEST(ValidateCli, BadSweepFileExitsOne) {
                         "\nframes: 2\nvary: [{parameter: rig.cuont, values: [2]}]\n");
   EXPECT_EQ(run_simcap("stress " + quoted(dir / "sweep.yaml") + " -o " + quoted(dir / "out"), &out),
             1);
-  EXPECT_NE(out.find("cuont"), std::string::npos) << out;
+  // The error is the sweep file's, so it names that file and the override's line there.
+  EXPECT_NE(out.find("sweep.yaml:3: " +
+                     (fs::path(SIMCAP_SOURCE_DIR) / "scenes" / "studio8.yaml").string() +
+                     ": override 'rig.cuont=2': rig.cuont: unknown key"),
+            std::string::npos)
+      << out;
   EXPECT_FALSE(fs::exists(dir / "out" / "table.csv"));
 
   write_text_atomic(dir / "sweep.yaml",
@@ -79,7 +84,8 @@ TEST(ValidateCli, BadSweepFileExitsOne) {
                         "\nframes: 2\nvary: [{parameter: track.colour, values: [red]}]\n");
   EXPECT_EQ(run_simcap("stress " + quoted(dir / "sweep.yaml") + " -o " + quoted(dir / "out"), &out),
             1);
-  EXPECT_NE(out.find("track.colour: unknown tracker option"), std::string::npos) << out;
+  EXPECT_NE(out.find("sweep.yaml:3: track.colour: unknown tracker option"), std::string::npos)
+      << out;
 
   // A known option reaches the tracker, which names the bad value.
   write_text_atomic(dir / "sweep.yaml",
@@ -87,7 +93,9 @@ TEST(ValidateCli, BadSweepFileExitsOne) {
                         "\nframes: 2\nvary: [{parameter: track.traversal, values: [sideways]}]\n");
   EXPECT_EQ(run_simcap("stress " + quoted(dir / "sweep.yaml") + " -o " + quoted(dir / "out"), &out),
             1);
-  EXPECT_NE(out.find("--traversal: unknown value 'sideways'"), std::string::npos) << out;
+  EXPECT_NE(out.find("sweep.yaml:3: track.traversal: --traversal: unknown value 'sideways'"),
+            std::string::npos)
+      << out;
 
   // A detector the loop does not know is named with its line, before anything runs.
   write_text_atomic(dir / "sweep.yaml",

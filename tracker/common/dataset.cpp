@@ -34,12 +34,32 @@ std::string frame_file(int frame) {
   return buf;
 }
 
+// A render that was killed (or still runs) leaves meta.json saying "complete": false and only its
+// first frames on disk, which a tracker would otherwise take for the whole dataset.
+void refuse_unfinished_render(const fs::path& root) {
+  const fs::path meta = root / "meta.json";
+  if (!fs::is_regular_file(meta)) return;
+  YAML::Node complete;
+  try {
+    complete = YAML::LoadFile(meta.string())["complete"];
+  } catch (const YAML::Exception&) {
+    return;  // not simcap's meta.json: the tracker reads nothing else from it
+  }
+  if (complete && !complete.as<bool>(true)) {
+    throw Error(meta.string() +
+                ": \"complete\": false: the render of this dataset did not finish (interrupted, "
+                "or still running); complete it with simcap render SCENE -o " +
+                root.string() + " --resume");
+  }
+}
+
 }  // namespace
 
 Dataset::Dataset(fs::path root, const std::string& actor) : root_(std::move(root)) {
   if (!fs::is_directory(root_)) {
     throw Error(root_.string() + ": not a folder (expected a dataset written by simcap render)");
   }
+  refuse_unfinished_render(root_);
   const fs::path calibration = root_ / "calibration" / "opencv.yaml";
   if (!fs::is_regular_file(calibration)) {
     throw Error(calibration.string() +

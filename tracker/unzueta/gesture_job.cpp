@@ -38,7 +38,9 @@ GestureCorpus load_gesture_corpus(const GestureSource& source) {
   if (!fs::is_regular_file(table)) {
     throw_input_error(table, 0, "",
                       "missing; expected the labelled gestures of a dataset rendered from a "
-                      "gesture corpus (e.g. scenes/gestures.yaml)");
+                      "gesture corpus (e.g. scenes/gestures.yaml), with frames enough to hold "
+                      "a whole gesture (render --frames or render.first_frame may leave them "
+                      "all out)");
   }
   const fs::path joints = source.track / "joints3d.csv";
   if (!fs::is_regular_file(joints)) {

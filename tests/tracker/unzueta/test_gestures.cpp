@@ -502,6 +502,10 @@ TEST(GesturesCommand, ScoresRenderedCorporaAndNamesBadInput) {
                 "gestures " + g1 + "/gt " + g1 + "/gt " + g2 + " " + g2 + "/gt -o " + out, &text),
             1);
   EXPECT_NE(text.find("gestures.csv"), std::string::npos) << text;
+  // A corpus cut short holds no whole gesture and no table: the error names that cause too.
+  EXPECT_NE(text.find("render --frames or render.first_frame may leave them all out"),
+            std::string::npos)
+      << text;
 }
 
 // `simcap loop --subjects`: render, track and validate each subject, then the gestures of all;
