@@ -77,9 +77,13 @@ std::vector<std::string> evaluated_joints(const JointTrack& truth, const fs::pat
   return joints;
 }
 
-void check_same_frames(const JointTrack& truth, const fs::path& truth_file,
-                       const std::vector<int>& frames, const fs::path& file) {
-  if (frames == truth.frames) return;
+// The track's frames: the ground truth's, or their first N (`simcap track --frames N`).
+void check_scored_frames(const JointTrack& truth, const fs::path& truth_file,
+                         const std::vector<int>& frames, const fs::path& file) {
+  if (frames.size() <= truth.frames.size() &&
+      std::equal(frames.begin(), frames.end(), truth.frames.begin())) {
+    return;
+  }
   std::string detail;
   for (int f : frames) {
     if (!std::binary_search(truth.frames.begin(), truth.frames.end(), f)) {
@@ -97,8 +101,10 @@ void check_same_frames(const JointTrack& truth, const fs::path& truth_file,
   }
   throw_input_error(file, 0, "frame",
                     "has " + describe_frames(frames) + " but " + truth_file.string() + " has " +
-                        describe_frames(truth.frames) + "; expected the same frames (" + detail +
-                        ")");
+                        describe_frames(truth.frames) +
+                        "; expected the same frames, or their first N as `simcap track --frames N` "
+                        "writes (" +
+                        detail + ")");
 }
 
 Eigen::Matrix3Xd frame_matrix(const JointTrack& t, size_t f, const std::vector<std::string>& joints,
@@ -239,9 +245,9 @@ ValidationInputs load_validation_inputs(const fs::path& dataset, const fs::path&
 
   EvaluationInput& in = out.evaluation;
   in.joints = evaluated_joints(truth, truth_file, est, est_file);
-  check_same_frames(truth, truth_file, est.frames, est_file);
-  in.frames = truth.frames;
-  for (size_t f = 0; f < truth.frames.size(); ++f) {
+  check_scored_frames(truth, truth_file, est.frames, est_file);
+  in.frames = est.frames;
+  for (size_t f = 0; f < in.frames.size(); ++f) {
     in.truth.push_back(frame_matrix(truth, f, in.joints, truth_file));
     in.estimate.push_back(frame_matrix(est, f, in.joints, est_file));
   }

@@ -16,7 +16,8 @@ struct ValidationInputs {
   std::vector<Camera> cameras;  // from calibration/opencv.yaml, in file order
   double fps = 30.0;            // from the dataset's scene.yaml when it says so
   // Evaluated joints: the HE15 set first, then any other joint both sides have, in ground-truth
-  // order. Frames: the ground truth's, which the track must match exactly.
+  // order. Frames: the track's, which are the ground truth's or their first N (a track made
+  // with `simcap track --frames N`).
   EvaluationInput evaluation;
 };
 

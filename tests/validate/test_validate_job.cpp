@@ -2,6 +2,7 @@
 // them, determinism, and a clear Error for each kind of mismatched or missing input.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -160,6 +161,29 @@ TEST(ValidateJob, TrackMissingFramesIsNamed) {
   edit_lines(dir / "track" / "joints3d.csv", [](std::string& l) { return l.rfind("7,", 0) != 0; });
   const std::string e = validate_error(dir / "data", dir / "track", dir / "r");
   EXPECT_NE(e.find("no rows for frame 7"), std::string::npos) << e;
+}
+
+TEST(ValidateJob, ATrackOfTheFirstFramesIsScoredOnThem) {
+  TempDir dir;
+  const auto d = write_synthetic_dataset(dir / "data", 12);
+  write_track(dir / "track", d.truth, kShift);
+  // What `simcap track --frames 5` writes: frames 0 to 4 (and the header).
+  edit_lines(dir / "track" / "joints3d.csv",
+             [](std::string& l) { return !std::isdigit(l[0]) || std::stoi(l) < 5; });
+  ValidateOptions o = quiet_options();
+  o.media = false;
+  const auto ev = validate_dataset(dir / "data", dir / "track", dir / "r", o).evaluation;
+  EXPECT_EQ(ev.frames, (std::vector<int>{0, 1, 2, 3, 4}));
+  EXPECT_NEAR(ev.mpjpe_mm, 50.0, 1e-3);
+
+  // Frames that do not start where the ground truth does are no such track.
+  write_track(dir / "track", d.truth, kShift);
+  edit_lines(dir / "track" / "joints3d.csv",
+             [](std::string& l) { return !std::isdigit(l[0]) || std::stoi(l) >= 3; });
+  const std::string e = validate_error(dir / "data", dir / "track", dir / "r2");
+  EXPECT_NE(e.find("no rows for frame 0"), std::string::npos) << e;
+  EXPECT_NE(e.find("--frames N"), std::string::npos) << e;
+  EXPECT_FALSE(fs::exists(dir / "r2" / "metrics.json"));
 }
 
 TEST(ValidateJob, MissingJointsAreNamed) {
