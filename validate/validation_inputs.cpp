@@ -9,6 +9,7 @@
 #include "core/dataset_actors.h"
 #include "core/error.h"
 #include "core/joint_track.h"
+#include "core/loop_folder.h"
 #include "core/track_source.h"
 #include "models/humanoid.h"
 #include "validate/visibility.h"
@@ -35,6 +36,8 @@ void check_folders(const fs::path& dataset, const fs::path& track) {
   if (!fs::is_directory(track)) {
     throw_input_error(track, 0, "", "not a folder; expected a track written by simcap track");
   }
+  refuse_loop_folder(dataset, "dataset");
+  refuse_loop_folder(track, "track");
   const fs::path gt = dataset / "gt" / "joints3d.csv";
   if (!fs::is_regular_file(gt) && fs::is_regular_file(dataset / "joints3d.csv") &&
       fs::is_regular_file(track / "gt" / "joints3d.csv")) {

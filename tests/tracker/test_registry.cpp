@@ -105,6 +105,20 @@ TEST(Registry, RefusesADatasetWhoseRenderDidNotFinish) {
   EXPECT_NO_THROW(Dataset(dir / "ds"));
 }
 
+TEST(Registry, ALoopsOutputFolderNamesItsDataset) {
+  TempDir dir;
+  testing::write_capsule_dataset(dir / "loop" / "dataset", {.frames = 2, .cameras = 2});
+  std::string log;
+  EXPECT_EQ(run_simcap("track " + (dir / "loop").string() + " -o " + (dir / "t").string(), &log),
+            1);
+  EXPECT_NE(log.find("the output folder of simcap loop or demo, not a dataset; its dataset is " +
+                     (dir / "loop" / "dataset").string()),
+            std::string::npos)
+      << log;
+  EXPECT_FALSE(fs::exists(dir / "t"));
+  EXPECT_NO_THROW(Dataset(dir / "loop" / "dataset"));
+}
+
 TEST(TrackFolder, ReplacesTheTrackOnlyWhenCommitted) {
   TempDir dir;
   const fs::path track = dir / "track";

@@ -217,6 +217,17 @@ TEST(ValidateJob, WrongFoldersAreNamed) {
   EXPECT_NE(e.find("nowhere: not a folder"), std::string::npos) << e;
   e = validate_error(dir / "data", dir / "empty", dir / "r");
   EXPECT_NE(e.find("empty: not a folder"), std::string::npos) << e;
+  // simcap loop's output folder in place of its dataset or its track.
+  fs::create_directories(dir / "loop" / "dataset");
+  fs::create_directories(dir / "loop" / "track");
+  e = validate_error(dir / "loop", dir / "track", dir / "r");
+  EXPECT_NE(e.find("not a dataset; its dataset is " + (dir / "loop" / "dataset").string()),
+            std::string::npos)
+      << e;
+  e = validate_error(dir / "data", dir / "loop", dir / "r");
+  EXPECT_NE(e.find("not a track; its track is " + (dir / "loop" / "track").string()),
+            std::string::npos)
+      << e;
 }
 
 TEST(ValidateJob, MissingFilesAreNamed) {

@@ -9,6 +9,7 @@
 #include "core/calibration.h"
 #include "core/dataset_actors.h"
 #include "core/error.h"
+#include "core/loop_folder.h"
 #include "tracker/common/png_decoder.h"
 
 namespace simcap::tracker {
@@ -59,6 +60,7 @@ Dataset::Dataset(fs::path root, const std::string& actor) : root_(std::move(root
   if (!fs::is_directory(root_)) {
     throw Error(root_.string() + ": not a folder (expected a dataset written by simcap render)");
   }
+  refuse_loop_folder(root_, "dataset");
   refuse_unfinished_render(root_);
   const fs::path calibration = root_ / "calibration" / "opencv.yaml";
   if (!fs::is_regular_file(calibration)) {
