@@ -12,8 +12,9 @@ namespace simcap {
 std::string FootStats::summary() const {
   char line[400];
   std::snprintf(line, sizeof line,
-                "lowest foot point over %d frames: min %+.4f m, mean %+.4f m; %d contacts "
-                "(within %.3f m for >= %.2f s, %.1f s in all): speed mean %.4f m/s, median "
+                "lowest foot point over %d frames: min %+.4f m, mean %+.4f m; %d contacts of the "
+                "feet's sole points (within %.3f m for >= %.2f s, %.1f s summed over the points): "
+                "speed mean %.4f m/s, median "
                 "%.4f m/s; drift per contact mean %.4f m, max %.4f m",
                 frames, lowest_min, lowest_mean, contacts, contact_height, min_contact_s, contact_s,
                 slide_mean, slide_median, drift_mean, drift_max);

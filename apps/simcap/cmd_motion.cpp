@@ -155,7 +155,8 @@ void add_motion(CLI::App& app, Action& action) {
 
   auto* g = motion->add_subcommand(
       "generate", "Generate a procedural motion for the simcap humanoid and write it as BVH");
-  g->add_option("kind", o->spec.kind, "stand, tpose, walk_in_place, walk_path, arm_raise or turn")
+  g->add_option("kind", o->spec.kind,
+                "The kind of motion (scenes/README.md, actors: procedural, describes each)")
       ->required()
       ->check(CLI::IsMember(procedural_kinds()));
   g->add_option("-o,--output", o->output, "BVH file to write")->required();
