@@ -8,6 +8,7 @@
 #include "core/atomic_file.h"
 #include "core/dataset_actors.h"
 #include "core/svg_plot.h"
+#include "validate/report_folder.h"
 #include "validate/report_html.h"
 
 namespace simcap {
@@ -272,6 +273,7 @@ DetectionValidation validate_detections(const std::filesystem::path& dataset,
                                         const std::filesystem::path& detections,
                                         const std::filesystem::path& out,
                                         const DetectionValidateOptions& options) {
+  check_report_folder(out);
   const KeypointTruth probe =
       read_keypoint_truth(dataset, options.layout.value_or(KeypointLayoutId::coco17));
   const Detections d = read_detections(detections, probe.cameras(), probe.frames(), options.layout);

@@ -13,6 +13,7 @@
 #include "core/stale_temporaries.h"
 #include "validate/metrics_json.h"
 #include "validate/overlay.h"
+#include "validate/report_folder.h"
 #include "validate/report_html.h"
 #include "validate/validation_inputs.h"
 #include "validate/video.h"
@@ -135,6 +136,7 @@ fs::path rgb_frame_path(const fs::path& dataset, const std::string& camera, int 
 
 ValidateSummary validate_dataset(const fs::path& dataset, const fs::path& track,
                                  const fs::path& out, const ValidateOptions& options) {
+  check_report_folder(out);
   const ValidationInputs in = load_validation_inputs(dataset, track);
   // A run killed before left temporaries; this run's report is exactly its own files.
   remove_stale_temporaries(out);

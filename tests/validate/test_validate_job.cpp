@@ -230,6 +230,23 @@ TEST(ValidateJob, WrongFoldersAreNamed) {
       << e;
 }
 
+TEST(ValidateJob, AReportIsNotWrittenIntoADatasetOrATrack) {
+  TempDir dir;
+  const auto d = write_synthetic_dataset(dir / "data");
+  write_track(dir / "track", d.truth, kShift);
+  std::string e = validate_error(dir / "data", dir / "track", dir / "data");
+  EXPECT_NE(e.find("data: holds a dataset"), std::string::npos) << e;
+  EXPECT_FALSE(fs::exists(dir / "data" / "metrics.json"));
+  e = validate_error(dir / "data", dir / "track", dir / "track");
+  EXPECT_NE(e.find("track: holds a track (joints3d.csv)"), std::string::npos) << e;
+  EXPECT_FALSE(fs::exists(dir / "track" / "metrics.json"));
+  // An earlier report is replaced.
+  ValidateOptions o = quiet_options();
+  o.media = false;
+  validate_dataset(dir / "data", dir / "track", dir / "r", o);
+  EXPECT_NO_THROW(validate_dataset(dir / "data", dir / "track", dir / "r", o));
+}
+
 TEST(ValidateJob, MissingFilesAreNamed) {
   for (const char* file : {"gt/joints2d.csv", "calibration/opencv.yaml", "gt/joints3d.csv"}) {
     TempDir dir;
