@@ -117,6 +117,22 @@ std::optional<StickPose> remeasure_shoulders(std::optional<MoschiniTracker>& tra
   return found.last;
 }
 
+// What the output (MoschiniSink) writes of an observation whose output waits: the hull's cells,
+// the rays, views and images are dropped.
+std::shared_ptr<const Observation> written_part(const Observation& obs) {
+  auto part = std::make_shared<Observation>();
+  part->frame = obs.frame;
+  part->hull.count = obs.hull.count;
+  part->centerline = obs.centerline;
+  part->points = obs.points;
+  part->gate = obs.gate;
+  part->silhouette_iou = obs.silhouette_iou;
+  part->silhouettes_ms = obs.silhouettes_ms;
+  part->hull_ms = obs.hull_ms;
+  part->centerline_ms = obs.centerline_ms;
+  return part;
+}
+
 }  // namespace
 
 TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& options,
@@ -285,18 +301,14 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
   // often it was, and the index of the frame being tracked.
   std::vector<TrackedObservation> shoulder_frames;
   int shoulder_measures = 0, index = -1;
-  // --init auto, alone in view: the frames tracked before the body is final (the shoulders'
-  // last measurement), written only once they are tracked again with it (track_back).
-  bool holding = refit_frame.has_value() && !truth;
-  std::vector<HeldFrame> held;
-  auto release_held = [&] {
-    holding = false;
-    // Before the refit the body is the start's guess: nothing better to track them with.
-    if (index > kRefitFrame)
-      track_back(tracker->model().dimensions(), tracker->surface(), topt, held);
-    for (const HeldFrame& frame : held) sink(ds, *frame.obs, frame.step, *tracker);
-    held.clear();
+  // --init auto, alone in view: every frame's output waits until the sequence's end, when the
+  // frames are tracked again backwards with the final body (track_back.h).
+  const bool holding = refit_frame.has_value() && !truth;
+  struct HeldFrame {
+    std::shared_ptr<const Observation> obs;
+    TrackStep step;
   };
+  std::vector<HeldFrame> held;
   tbb::parallel_pipeline(
       8, tbb::make_filter<void, int>(tbb::filter_mode::serial_in_order,
                                      [&](tbb::flow_control& fc) {
@@ -327,7 +339,10 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
                    last_body = place(tracker->surface(), tracker->model().geometry(step.pose));
                    if (occlusion) occlusion->observe(*last_body, obs->silhouettes);
                    if (holding) {
-                     held.push_back({obs, step});
+                     const bool inspected =
+                         std::find(options.inspect.begin(), options.inspect.end(), obs->frame) !=
+                         options.inspect.end();
+                     held.push_back({inspected ? obs : written_part(*obs), step});
                    } else {
                      sink(ds, *obs, step, *tracker);
                    }
@@ -344,7 +359,7 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
                        // Tracked back from where the tracker goes on.
                        if (restart && holding) held.back().step.pose = *restart;
                        shoulder_frames.clear();
-                       if (++shoulder_measures == kShoulderMeasures && holding) release_held();
+                       ++shoulder_measures;
                      }
                    }
                    if (obs->frame == refit_frame) {
@@ -359,7 +374,34 @@ TrackSummary run_moschini(const fs::path& dataset_path, const MoschiniOptions& o
                    }
                    progress.advance();
                  }));
-  if (holding) release_held();
+  // Before the refit the body is the start's guess: nothing better to track them with.
+  if (holding && index > kRefitFrame) {
+    // Each frame observed again: holding them all would take ~1.2 MB a frame.
+    TrackBack back(tracker->model().dimensions(), tracker->surface(), topt, held.back().step.pose);
+    size_t back_next = held.size();
+    tbb::parallel_pipeline(
+        8, tbb::make_filter<void, size_t>(tbb::filter_mode::serial_in_order,
+                                          [&](tbb::flow_control& fc) {
+                                            if (back_next == 0) {
+                                              fc.stop();
+                                              return size_t{0};
+                                            }
+                                            return --back_next;
+                                          }) &
+               tbb::make_filter<size_t, std::pair<size_t, std::shared_ptr<Observation>>>(
+                   tbb::filter_mode::parallel,
+                   [&](size_t i) {
+                     return std::pair{
+                         i, std::make_shared<Observation>(perception.observe(held[i].obs->frame))};
+                   }) &
+               tbb::make_filter<std::pair<size_t, std::shared_ptr<Observation>>, void>(
+                   tbb::filter_mode::serial_in_order,
+                   [&](const std::pair<size_t, std::shared_ptr<Observation>>& frame) {
+                     if (occlusion) perception.widen(*frame.second, *occlusion);
+                     back.step(*frame.second, held[frame.first].step);
+                   }));
+  }
+  for (const HeldFrame& frame : held) sink(ds, *frame.obs, frame.step, *tracker);
   progress.finish();
   TrackSummary summary;
   summary.frames = static_cast<int>(frames.size());
