@@ -193,8 +193,9 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
              "exchanged; needs --consensus-px > 0) or off");
   add_choice(cmd, "--pair-consensus", o.sik.multiview_pairs, kOnOff,
              "sik --effectors multiview: on (when both hands', or feet's, triangulated points "
-             "fall on one limb, the cameras whose tracks agree elsewhere give one of them; needs "
-             "--consensus-px > 0) or off");
+             "fall on one limb, the cameras whose tracks agree elsewhere give one of them, and a "
+             "part no two cameras agree on is not placed from a track on the other one's point; "
+             "needs --consensus-px > 0) or off");
   add_choice(cmd, "--borrow-colours", o.sik.multiview_borrow_colours, kOnOff,
              "sik --effectors multiview --reseed on: on (a camera whose part showed none of its "
              "colours in the first frame takes them from a camera that agrees on it, so the "

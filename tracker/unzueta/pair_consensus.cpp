@@ -59,4 +59,10 @@ PairConsensus pair_consensus(const std::vector<PixelObservation>& left,
   return out;
 }
 
+bool slid_onto_other(const Camera& camera, const Eigen::Vector2d& px, const Eigen::Vector3d& other,
+                     const Eigen::Vector3d& previous, double inlier_px) {
+  const auto o = camera.project(other), then = camera.project(previous);
+  return o && then && (*o - px).norm() <= inlier_px && (*o - *then).norm() > 2 * inlier_px;
+}
+
 }  // namespace simcap::tracker

@@ -23,4 +23,11 @@ PairConsensus pair_consensus(const std::vector<PixelObservation>& left,
                              const std::vector<PixelObservation>& right,
                              const PartConsensusOptions& options = {});
 
+// Whether a part's track at `px` in `camera` has slid onto the other part of its pair: it lies
+// within `inlier_px` of the other part's point (`other`) where the part's own previous point
+// (`previous`) projected more than twice that from it. (Used only where the part has no
+// consensus: leaving such views out of a consensus cost the hold-out, UNZUETA.md, mv40.)
+bool slid_onto_other(const Camera& camera, const Eigen::Vector2d& px, const Eigen::Vector3d& other,
+                     const Eigen::Vector3d& previous, double inlier_px);
+
 }  // namespace simcap::tracker

@@ -68,8 +68,9 @@ struct SikTrackOptions {
   // mv40): their swaps happen in several cameras at once.
   bool multiview_swaps = true;
   // --effectors multiview (needs the consensus): when both hands' (or feet's) consensus lands on
-  // one limb, the cameras whose tracks lie elsewhere and agree give the other part
-  // (pair_consensus.h; hop4 --init auto 218.4 -> 209.3 mm, the other runs unchanged).
+  // one limb, the cameras whose tracks lie elsewhere and agree give the other part, and a part
+  // without consensus does not fall back on a camera whose track slid onto the other part
+  // (pair_consensus.h; the 249-frame walk 279.6 -> 176.9 mm, UNZUETA.md, mv40).
   bool multiview_pairs = true;
   // --effectors multiview, with `multiview_reseed`: a camera whose part learnt no colours (its
   // first ROI held none of it) takes an agreeing camera's, so that the re-seeding can start it

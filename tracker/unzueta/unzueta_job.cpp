@@ -380,12 +380,34 @@ class Pipeline {
   }
 
   // A left/right pair (pair_consensus: both parts' consensus on one limb leaves the other limb
-  // to the cameras that still track it there).
+  // to the cameras that still track it there; a part without consensus does not fall back on a
+  // track on the other part's point).
   void lift_pair(Effector l, Effector r, std::array<Eigen::Vector3d, kEffectorCount>& centre) {
     const PartViews vl = part_views(l), vr = part_views(r);
     const PairConsensus c = pair_consensus(vl.views, vr.views, {options_.multiview_consensus_px});
-    centre[index_of(l)] = place(l, vl, c.left);
-    centre[index_of(r)] = place(r, vr, c.right);
+    centre[index_of(l)] = place(l, without_slid(l, vl, c.left, c.right), c.left);
+    centre[index_of(r)] = place(r, without_slid(r, vr, c.right, c.left), c.right);
+  }
+
+  // A part without consensus falls back on one camera's ray; a camera whose track of it has
+  // slid onto the other part's consensus point (slid_onto_other) would put the two limbs
+  // together, so another camera that still has the part is used.
+  PartViews without_slid(Effector e, PartViews v, const std::optional<PartConsensus>& own,
+                         const std::optional<PartConsensus>& other) const {
+    if (own || !other || v.seen < 0) return v;
+    if (trackers_[v.seen].state(e) != CfofState::tracking) return v;
+    const cv::Point2d p = trackers_[v.seen].position(e);
+    if (!slid_onto_other(camera(cameras_[v.seen]), {p.x, p.y}, other->position,
+                         centre_[index_of(e)], options_.multiview_consensus_px)) {
+      return v;
+    }
+    const int slid = v.seen;
+    v.seen = -1;
+    for (size_t k = 0; k < cameras_.size(); ++k) {
+      if (static_cast<int>(k) == slid || trackers_[k].state(e) == CfofState::lost) continue;
+      if (v.seen < 0 || trackers_[k].state(e) == CfofState::tracking) v.seen = static_cast<int>(k);
+    }
+    return v;
   }
 
   // Multiview: a camera whose left and right hand (or foot) tracks each follow the other limb,

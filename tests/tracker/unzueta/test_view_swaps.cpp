@@ -1,7 +1,7 @@
 // The multiview left/right checks against pixels projected by OpenCV (cv::projectPoints): a
 // camera whose hands are swapped is found from the other cameras' triangulation (and only that
-// camera), and two parts whose consensus fell on one hand get the other hand back from the
-// cameras that still track it (pair_consensus.h).
+// camera), two parts whose consensus fell on one hand get the other hand back from the cameras
+// that still track it, and a track on the other hand's point is named (pair_consensus.h).
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
@@ -102,6 +102,17 @@ TEST(PairConsensus, TouchingHandsStayTogether) {
   const PairConsensus stray =
       pair_consensus(views_of(cams, {l, l, l, away}), views_of(cams, {r, r, r, r}));
   EXPECT_LT((stray.left->position - l).norm(), 1e-6);
+}
+
+// A left hand whose track sits on the right hand's point, where the left hand was half a metre
+// away in the last frame, has slid; on its own point, or where the hands were together, not.
+TEST(PairConsensus, ATrackOnTheOtherPartsPointHasSlid) {
+  const auto cams = corner_cameras();
+  const Eigen::Vector3d l(0.25, 1.0, 0.2), r(-0.25, 0.95, -0.1);
+  const Eigen::Vector2d on_r = opencv_pixel(cams[0], r) + Eigen::Vector2d(3, -2);
+  EXPECT_TRUE(slid_onto_other(cams[0], on_r, r, l, 12.0));
+  EXPECT_FALSE(slid_onto_other(cams[0], opencv_pixel(cams[0], l), r, l, 12.0));
+  EXPECT_FALSE(slid_onto_other(cams[0], on_r, r, r + Eigen::Vector3d(0.05, 0, 0), 12.0));
 }
 
 }  // namespace
