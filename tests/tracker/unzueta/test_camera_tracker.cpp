@@ -50,17 +50,22 @@ Frame person(bool raised) {
   return f;
 }
 
+// The first frame's regions: the head, and the right hand hanging.
+InitialRegions head_and_hand() {
+  InitialRegions regions;
+  regions.person_px = kPersonPx;
+  regions.roi[index_of(Effector::head)] = cv::Rect2d(136, 16, 48, 48);
+  regions.roi[index_of(Effector::right_hand)] = cv::Rect2d(100, 180, 24, 24);
+  return regions;
+}
+
 // Tracks 4 frames hanging, then the raised arm; returns the hand's state and position after
 // each frame (index = frame - 1).
 std::vector<std::pair<CfofState, cv::Point2d>> track_hand(const CameraTrackerParams& params,
                                                           int frames) {
   CameraTracker tracker(params);
-  InitialRegions regions;
-  regions.person_px = kPersonPx;
-  regions.roi[index_of(Effector::head)] = cv::Rect2d(136, 16, 48, 48);
-  regions.roi[index_of(Effector::right_hand)] = cv::Rect2d(100, 180, 24, 24);
   const Frame first = person(false);
-  tracker.initialize(first.bgr, first.silhouette, regions);
+  tracker.initialize(first.bgr, first.silhouette, head_and_hand());
   std::array<double, kEffectorCount> depth;
   depth.fill(std::numeric_limits<double>::quiet_NaN());
   std::array<std::optional<cv::Point2d>, kEffectorCount> root;
@@ -155,12 +160,8 @@ TEST(CameraTracker, CorrectedHandIsFollowedWhereOtherCamerasPutIt) {
   const cv::Point2d hand(40, 97);
   for (bool corrected : {false, true}) {
     CameraTracker tracker;
-    InitialRegions regions;
-    regions.person_px = kPersonPx;
-    regions.roi[index_of(Effector::head)] = cv::Rect2d(136, 16, 48, 48);
-    regions.roi[index_of(Effector::right_hand)] = cv::Rect2d(100, 180, 24, 24);
     const Frame hanging = person(false), raised = person(true);
-    tracker.initialize(hanging.bgr, hanging.silhouette, regions);
+    tracker.initialize(hanging.bgr, hanging.silhouette, head_and_hand());
     std::array<double, kEffectorCount> depth;
     depth.fill(std::numeric_limits<double>::quiet_NaN());
     for (int f = 0; f < 3; ++f) tracker.track(raised.bgr, raised.silhouette, depth);
@@ -185,10 +186,7 @@ TEST(CameraTracker, CorrectedHandIsFollowedWhereOtherCamerasPutIt) {
 // camera learnt for it (CameraTracker::borrow_colours), and is then followed there.
 TEST(CameraTracker, APartWithoutColoursStartsOnColoursBorrowedFromAnotherCamera) {
   const Frame hanging = person(false);
-  InitialRegions seen;
-  seen.person_px = kPersonPx;
-  seen.roi[index_of(Effector::head)] = cv::Rect2d(136, 16, 48, 48);
-  seen.roi[index_of(Effector::right_hand)] = cv::Rect2d(100, 180, 24, 24);
+  const InitialRegions seen = head_and_hand();
   CameraTracker donor;
   donor.initialize(hanging.bgr, hanging.silhouette, seen);
   ASSERT_EQ(donor.state(Effector::right_hand), CfofState::tracking);
