@@ -187,6 +187,19 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
   add_choice(cmd, "--reseed", o.sik.multiview_reseed, kOnOff,
              "sik --effectors multiview: on (a camera whose track of a part disagrees with the "
              "cameras that agree, or that lost it, is moved onto their point) or off");
+  add_choice(cmd, "--view-swaps", o.sik.multiview_swaps, kOnOff,
+             "sik --effectors multiview: on (a camera whose left and right hand, or foot, tracks "
+             "each follow the other limb, where two other cameras agree on both, has them "
+             "exchanged; needs --consensus-px > 0) or off");
+  add_choice(cmd, "--pair-consensus", o.sik.multiview_pairs, kOnOff,
+             "sik --effectors multiview: on (when both hands', or feet's, triangulated points "
+             "fall on one limb, the cameras whose tracks agree elsewhere give one of them, and a "
+             "part no two cameras agree on is not placed from a track on the other one's point; "
+             "needs --consensus-px > 0) or off");
+  add_choice(cmd, "--borrow-colours", o.sik.multiview_borrow_colours, kOnOff,
+             "sik --effectors multiview --reseed on: on (a camera whose part showed none of its "
+             "colours in the first frame takes them from a camera that agrees on it, so the "
+             "re-seeding can start it there) or off");
   cmd->add_option_function<double>(
          "--refind-reach",
          [&o](double reach) {

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <utility>
 
 #include "core/error.h"
 #include "tracker/unzueta/limb_end.h"
@@ -183,6 +184,17 @@ void CameraTracker::correct(Effector e, cv::Point2d at) {
   }
   surface_[i].clear();
   for (const cv::Point2f& f : t.selection()) surface_[i].emplace_back(f);
+}
+
+void CameraTracker::borrow_colours(Effector e, const CameraTracker& donor, double scale) {
+  parts_[part_index(e)].borrow_colours(donor.parts_[part_index(e)], scale);
+}
+
+void CameraTracker::swap(Effector a, Effector b) {
+  const int i = part_index(a), j = part_index(b);
+  std::swap(parts_[i], parts_[j]);
+  std::swap(surface_[i], surface_[j]);
+  std::swap(untracked_[i], untracked_[j]);
 }
 
 cv::Point2d CameraTracker::position(Effector e) const {

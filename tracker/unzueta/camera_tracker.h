@@ -80,6 +80,12 @@ class CameraTracker {
   // consensus point projected): a tracked or predicted part is shifted there, a lost one
   // restarts there when its colours show (CfofTracker::restart). Not for the pelvis.
   void correct(Effector e, cv::Point2d at);
+  // A part that learnt no colours takes those `donor` (another camera) learnt for it, its ROI
+  // `scale` times the donor's (CfofTracker::borrow_colours), so that `correct` can restart it.
+  void borrow_colours(Effector e, const CameraTracker& donor, double scale);
+  // Exchanges two parts' whole tracks (flock, filters, colours), e.g. a left and right hand
+  // whose flocks each followed the other limb (view_swaps.h). Not for the pelvis.
+  void swap(Effector a, Effector b);
 
   // The part's image position (the ROI centre; the pelvis from Alg. 6).
   cv::Point2d position(Effector e) const;

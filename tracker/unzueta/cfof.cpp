@@ -100,6 +100,14 @@ void CfofTracker::initialize(const CfofFrame& frame, cv::Rect2d roi) {
   start(frame);
 }
 
+void CfofTracker::borrow_colours(const CfofTracker& donor, double scale) {
+  if (initial_coloured_ > 0 || donor.initial_coloured_ == 0) return;
+  colour_ = donor.colour_;
+  size_ = donor.size_ * scale;
+  initial_coloured_ =
+      std::max(1, static_cast<int>(std::lround(donor.initial_coloured_ * scale * scale)));
+}
+
 bool CfofTracker::restart(const CfofFrame& frame, cv::Point2d centre) {
   if (initial_coloured_ == 0 ||
       coloured_pixels(frame, roi_at(centre)) < params_.restart_color_fraction * initial_coloured_) {

@@ -69,6 +69,10 @@ class CfofTracker {
   // (e.g. where its limb is found after it was lost): as Alg. 2's restart, only when that ROI
   // holds enough of the part's colour (restart_color_fraction). Returns whether it tracks.
   bool restart(const CfofFrame& frame, cv::Point2d centre);
+  // Takes `donor`'s colours (the same part as another camera learnt them) when this part learnt
+  // none (its first ROI held none of it), with an ROI `scale` times the donor's: the part can
+  // then be restarted where the other cameras put it. No-op when it has colours of its own.
+  void borrow_colours(const CfofTracker& donor, double scale);
   // Alg. 2 on the next frame. When `hidden` (another tracked part lies in front, §3.3.1) the
   // optical flow stops: the features are dropped and the ROI coasts on its Kalman filter.
   // `carry` is how far the body the part belongs to moved since the previous frame (e.g. the

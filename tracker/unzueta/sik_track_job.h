@@ -62,6 +62,20 @@ struct SikTrackOptions {
   // onto the agreed point (studio4 267.8 -> 172.4 mm, hop4 229.0 -> 211.8 mm; UNZUETA.md).
   double multiview_consensus_px = 12.0;
   bool multiview_reseed = true;
+  // --effectors multiview (needs the consensus): a camera whose left and right hand (or foot)
+  // tracks each follow the other limb, where the other cameras agree on both, has the two
+  // tracks exchanged (view_swaps.h). Never needed on the seven clips measured (UNZUETA.md,
+  // mv40): their swaps happen in several cameras at once.
+  bool multiview_swaps = true;
+  // --effectors multiview (needs the consensus): when both hands' (or feet's) consensus lands on
+  // one limb, the cameras whose tracks lie elsewhere and agree give the other part, and a part
+  // without consensus does not fall back on a camera whose track slid onto the other part
+  // (pair_consensus.h; the 249-frame walk 279.6 -> 176.9 mm, UNZUETA.md, mv40).
+  bool multiview_pairs = true;
+  // --effectors multiview, with `multiview_reseed`: a camera whose part learnt no colours (its
+  // first ROI held none of it) takes an agreeing camera's, so that the re-seeding can start it
+  // (lost 4-8 % -> 0 on six runs of fourteen; hop4 102.3 -> 98.9 mm; UNZUETA.md, mv40).
+  bool multiview_borrow_colours = true;
   SikOptions solver;    // SIK itself: the same defaults as ik-eval's
   int max_frames = -1;  // the first frames only; < 0: every frame
   bool quiet = false;

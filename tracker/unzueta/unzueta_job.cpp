@@ -18,10 +18,12 @@
 #include "tracker/common/png_decoder.h"
 #include "tracker/common/triangulation.h"
 #include "tracker/unzueta/depth_lookup.h"
+#include "tracker/unzueta/pair_consensus.h"
 #include "tracker/unzueta/part_consensus.h"
 #include "tracker/unzueta/part_model.h"
 #include "tracker/unzueta/sik.h"
 #include "tracker/unzueta/sik_track_job.h"
+#include "tracker/unzueta/view_swaps.h"
 
 namespace simcap::tracker {
 namespace fs = std::filesystem;
@@ -34,6 +36,9 @@ constexpr double kPelvisWindow = 0.03;
 // Height assumed for the floor contact of the feet before the body is measured (the feet's
 // centres lie ~4% of it above the floor, so a 10 cm error moves them by 4 mm).
 constexpr double kAssumedHeight = 1.75;
+// The left/right pairs of parts.
+constexpr std::array<std::array<Effector, 2>, 2> kPairs = {
+    {{Effector::left_hand, Effector::right_hand}, {Effector::left_foot, Effector::right_foot}}};
 
 std::string frame_name(int frame, const char* ext) {
   char buf[32];
@@ -93,6 +98,9 @@ class Pipeline {
       UnzuetaFrame out;
       out.frame = f;
       out.centre = k == 0 ? centre_ : lift(images);
+      if (k > 0 && options_.effectors == EffectorSource::multiview && options_.multiview_swaps) {
+        unswap(out.centre);
+      }
       if (options_.effectors == EffectorSource::multiview && options_.multiview_reseed) {
         reseed(out.centre);
       }
@@ -321,34 +329,120 @@ class Pipeline {
 
   // --- every frame --------------------------------------------------------------------------
 
-  // A part from every camera that tracks it: the views that agree (part_consensus; with
-  // multiview_consensus_px 0 all of them in one DLT), else one camera's ray at the part's
-  // previous depth. Remembers which cameras agreed, for `reseed`.
-  Eigen::Vector3d lift_multiview(Effector e) const {
-    const int i = index_of(e);
+  // A part's views for the triangulation: every camera that tracks it.
+  struct PartViews {
     std::vector<PixelObservation> views;
-    std::vector<size_t> view_camera;
-    int seen = -1;  // a camera that still has the part (tracking or predicted)
+    std::vector<size_t> camera;  // per view, its index in cameras_
+    int seen = -1;               // a camera that still has the part (tracking or predicted)
+  };
+  PartViews part_views(Effector e) const {
+    PartViews v;
     for (size_t k = 0; k < cameras_.size(); ++k) {
       const CfofState s = trackers_[k].state(e);
       if (s == CfofState::lost) continue;
-      if (seen < 0 || s == CfofState::tracking) seen = static_cast<int>(k);
+      if (v.seen < 0 || s == CfofState::tracking) v.seen = static_cast<int>(k);
       if (s != CfofState::tracking) continue;
       const cv::Point2d p = trackers_[k].position(e);
-      views.push_back({&camera(cameras_[k]), {p.x, p.y}});
-      view_camera.push_back(k);
+      v.views.push_back({&camera(cameras_[k]), {p.x, p.y}});
+      v.camera.push_back(k);
     }
+    return v;
+  }
+
+  // A part from the views that agree (`c`), else one camera's ray at the part's previous depth.
+  // Remembers which cameras agreed, for `reseed`.
+  Eigen::Vector3d place(Effector e, const PartViews& v, const std::optional<PartConsensus>& c) {
+    const int i = index_of(e);
     agreeing_[i].assign(cameras_.size(), false);
-    if (options_.multiview_consensus_px <= 0) {
-      if (const auto x = triangulate(views)) return *x;
-    } else if (const auto c = part_consensus(views, {options_.multiview_consensus_px})) {
-      for (size_t v = 0; v < views.size(); ++v) agreeing_[i][view_camera[v]] = c->inlier[v];
+    if (c) {
+      for (size_t k = 0; k < v.views.size(); ++k) agreeing_[i][v.camera[k]] = c->inlier[k];
       return c->position;
     }
-    if (seen < 0) return centre_[i];
-    // One view (or only predictions): along its ray at the part's previous depth.
-    const Camera& cam = camera(cameras_[seen]);
-    return point_at_depth(cam, trackers_[seen].position(e), cam.to_camera(centre_[i]).z());
+    if (v.seen < 0) return centre_[i];
+    const Camera& cam = camera(cameras_[v.seen]);
+    return point_at_depth(cam, trackers_[v.seen].position(e), cam.to_camera(centre_[i]).z());
+  }
+
+  // A part from every camera that tracks it: the views that agree (part_consensus; with
+  // multiview_consensus_px 0 all of them in one DLT).
+  Eigen::Vector3d lift_multiview(Effector e) {
+    const PartViews v = part_views(e);
+    if (options_.multiview_consensus_px > 0) {
+      return place(e, v, part_consensus(v.views, {options_.multiview_consensus_px}));
+    }
+    std::optional<PartConsensus> all;
+    if (const auto x = triangulate(v.views)) {
+      all.emplace();
+      all->position = *x;
+      all->inlier.assign(v.views.size(), false);
+    }
+    return place(e, v, all);
+  }
+
+  // A left/right pair (pair_consensus: both parts' consensus on one limb leaves the other limb
+  // to the cameras that still track it there; a part without consensus does not fall back on a
+  // track on the other part's point).
+  void lift_pair(Effector l, Effector r, std::array<Eigen::Vector3d, kEffectorCount>& centre) {
+    const PartViews vl = part_views(l), vr = part_views(r);
+    const PairConsensus c = pair_consensus(vl.views, vr.views, {options_.multiview_consensus_px});
+    centre[index_of(l)] = place(l, without_slid(l, vl, c.left, c.right), c.left);
+    centre[index_of(r)] = place(r, without_slid(r, vr, c.right, c.left), c.right);
+  }
+
+  // A part without consensus falls back on one camera's ray; a camera whose track of it has
+  // slid onto the other part's consensus point (slid_onto_other) would put the two limbs
+  // together, so another camera that still has the part is used.
+  PartViews without_slid(Effector e, PartViews v, const std::optional<PartConsensus>& own,
+                         const std::optional<PartConsensus>& other) const {
+    if (own || !other || v.seen < 0) return v;
+    if (trackers_[v.seen].state(e) != CfofState::tracking) return v;
+    const cv::Point2d p = trackers_[v.seen].position(e);
+    if (!slid_onto_other(camera(cameras_[v.seen]), {p.x, p.y}, other->position,
+                         centre_[index_of(e)], options_.multiview_consensus_px)) {
+      return v;
+    }
+    const int slid = v.seen;
+    v.seen = -1;
+    for (size_t k = 0; k < cameras_.size(); ++k) {
+      if (static_cast<int>(k) == slid || trackers_[k].state(e) == CfofState::lost) continue;
+      if (v.seen < 0 || trackers_[k].state(e) == CfofState::tracking) v.seen = static_cast<int>(k);
+    }
+    return v;
+  }
+
+  // Multiview: a camera whose left and right hand (or foot) tracks each follow the other limb,
+  // where two or more other cameras agree on both (tracks_swapped), has its two tracks
+  // exchanged; the pair is then triangulated again with that camera's tracks.
+  void unswap(std::array<Eigen::Vector3d, kEffectorCount>& centre) {
+    for (const auto& [l, r] : kPairs) {
+      const std::vector<bool>& agree_l = agreeing_[index_of(l)];
+      const std::vector<bool>& agree_r = agreeing_[index_of(r)];
+      bool swapped = false;
+      for (size_t k = 0; k < cameras_.size(); ++k) {
+        CameraTracker& t = trackers_[k];
+        if (t.state(l) != CfofState::tracking || t.state(r) != CfofState::tracking) continue;
+        if (agree_l[k] && agree_r[k]) continue;
+        int others_l = 0, others_r = 0;
+        for (size_t o = 0; o < cameras_.size(); ++o) {
+          others_l += o != k && agree_l[o];
+          others_r += o != k && agree_r[o];
+        }
+        if (others_l < 2 || others_r < 2) continue;
+        const cv::Point2d pl = t.position(l), pr = t.position(r);
+        if (tracks_swapped(camera(cameras_[k]), {pl.x, pl.y}, {pr.x, pr.y}, centre[index_of(l)],
+                           centre[index_of(r)], options_.multiview_consensus_px)) {
+          t.swap(l, r);
+          swapped = true;
+        }
+      }
+      if (!swapped) continue;
+      if (options_.multiview_pairs) {
+        lift_pair(l, r, centre);
+      } else {
+        centre[index_of(l)] = lift_multiview(l);
+        centre[index_of(r)] = lift_multiview(r);
+      }
+    }
   }
 
   // Multiview: where two or more cameras agree on a part, the cameras that disagree, predict it
@@ -359,9 +453,17 @@ class Pipeline {
       const std::vector<bool>& agree = agreeing_[index_of(e)];
       if (std::count(agree.begin(), agree.end(), true) < 2) continue;
       const Eigen::Vector3d& x = centre[index_of(e)];
+      const size_t donor = std::find(agree.begin(), agree.end(), true) - agree.begin();
+      const Camera& donor_cam = camera(cameras_[donor]);
       for (size_t k = 0; k < cameras_.size(); ++k) {
         const Camera& cam = camera(cameras_[k]);
         if (agree[k] || !cam.in_frustum(x)) continue;
+        if (options_.multiview_borrow_colours) {
+          // The part's size in pixels goes with the focal length over the depth.
+          const double scale =
+              cam.K(0, 0) / cam.to_camera(x).z() / (donor_cam.K(0, 0) / donor_cam.to_camera(x).z());
+          trackers_[k].borrow_colours(e, trackers_[donor], scale);
+        }
         if (const auto p = cam.project(x)) trackers_[k].correct(e, {p->x(), p->y()});
       }
     }
@@ -371,6 +473,12 @@ class Pipeline {
   // (order_z_), which a part that is not tracked keeps.
   std::array<Eigen::Vector3d, kEffectorCount> lift(const std::vector<Images>& images) {
     std::array<Eigen::Vector3d, kEffectorCount> out = centre_;
+    if (options_.effectors == EffectorSource::multiview && options_.multiview_pairs &&
+        options_.multiview_consensus_px > 0) {
+      for (Effector e : {Effector::head, Effector::pelvis}) out[index_of(e)] = lift_multiview(e);
+      for (const auto& [l, r] : kPairs) lift_pair(l, r, out);
+      return out;
+    }
     for (Effector e : kEffectors) {
       const int i = index_of(e);
       if (options_.effectors == EffectorSource::multiview) {
@@ -444,7 +552,7 @@ class Pipeline {
   std::vector<int> he15_;
   std::array<int, kEffectorCount> limb_root_{};
   std::array<Eigen::Vector3d, kEffectorCount> centre_{};
-  mutable std::array<std::vector<bool>, kEffectorCount> agreeing_;
+  std::array<std::vector<bool>, kEffectorCount> agreeing_;
   std::array<double, kEffectorCount> mono_depth_{};
   std::array<double, kEffectorCount> order_z_{};  // --effectors depth: see part_depths
   Eigen::Vector3d pelvis_offset_ = Eigen::Vector3d::Zero();

@@ -1,7 +1,8 @@
 // CameraTracker's re-finding of a lost hand on a synthetic person: a hand whose arm swings
 // away faster than its flock can follow is lost, and after CameraTrackerParams::refind_patience
 // frames it restarts on the far end of its skin blob reachable from the shoulder, and only
-// within the arm's reach; and its correction from outside (multiview re-seeding).
+// within the arm's reach; and its correction from outside (multiview re-seeding, borrowed
+// colours and swaps).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -49,17 +50,22 @@ Frame person(bool raised) {
   return f;
 }
 
+// The first frame's regions: the head, and the right hand hanging.
+InitialRegions head_and_hand() {
+  InitialRegions regions;
+  regions.person_px = kPersonPx;
+  regions.roi[index_of(Effector::head)] = cv::Rect2d(136, 16, 48, 48);
+  regions.roi[index_of(Effector::right_hand)] = cv::Rect2d(100, 180, 24, 24);
+  return regions;
+}
+
 // Tracks 4 frames hanging, then the raised arm; returns the hand's state and position after
 // each frame (index = frame - 1).
 std::vector<std::pair<CfofState, cv::Point2d>> track_hand(const CameraTrackerParams& params,
                                                           int frames) {
   CameraTracker tracker(params);
-  InitialRegions regions;
-  regions.person_px = kPersonPx;
-  regions.roi[index_of(Effector::head)] = cv::Rect2d(136, 16, 48, 48);
-  regions.roi[index_of(Effector::right_hand)] = cv::Rect2d(100, 180, 24, 24);
   const Frame first = person(false);
-  tracker.initialize(first.bgr, first.silhouette, regions);
+  tracker.initialize(first.bgr, first.silhouette, head_and_hand());
   std::array<double, kEffectorCount> depth;
   depth.fill(std::numeric_limits<double>::quiet_NaN());
   std::array<std::optional<cv::Point2d>, kEffectorCount> root;
@@ -154,12 +160,8 @@ TEST(CameraTracker, CorrectedHandIsFollowedWhereOtherCamerasPutIt) {
   const cv::Point2d hand(40, 97);
   for (bool corrected : {false, true}) {
     CameraTracker tracker;
-    InitialRegions regions;
-    regions.person_px = kPersonPx;
-    regions.roi[index_of(Effector::head)] = cv::Rect2d(136, 16, 48, 48);
-    regions.roi[index_of(Effector::right_hand)] = cv::Rect2d(100, 180, 24, 24);
     const Frame hanging = person(false), raised = person(true);
-    tracker.initialize(hanging.bgr, hanging.silhouette, regions);
+    tracker.initialize(hanging.bgr, hanging.silhouette, head_and_hand());
     std::array<double, kEffectorCount> depth;
     depth.fill(std::numeric_limits<double>::quiet_NaN());
     for (int f = 0; f < 3; ++f) tracker.track(raised.bgr, raised.silhouette, depth);
@@ -176,6 +178,68 @@ TEST(CameraTracker, CorrectedHandIsFollowedWhereOtherCamerasPutIt) {
     const cv::Point2d head = tracker.position(Effector::head) + cv::Point2d(10, 0);
     tracker.correct(Effector::head, head);
     EXPECT_LT(distance(tracker.position(Effector::head), head), 1e-9);
+  }
+}
+
+// Multiview re-seeding of a part that learnt no colours (its first ROI lay on the floor): it
+// cannot be restarted where the other cameras put it until it takes the colours another
+// camera learnt for it (CameraTracker::borrow_colours), and is then followed there.
+TEST(CameraTracker, APartWithoutColoursStartsOnColoursBorrowedFromAnotherCamera) {
+  const Frame hanging = person(false);
+  const InitialRegions seen = head_and_hand();
+  CameraTracker donor;
+  donor.initialize(hanging.bgr, hanging.silhouette, seen);
+  ASSERT_EQ(donor.state(Effector::right_hand), CfofState::tracking);
+  const cv::Point2d hand(112, 192);
+  std::array<double, kEffectorCount> depth;
+  depth.fill(std::numeric_limits<double>::quiet_NaN());
+  for (bool borrowed : {false, true}) {
+    InitialRegions blind = seen;
+    blind.roi[index_of(Effector::right_hand)] = cv::Rect2d(260, 260, 24, 24);  // the floor
+    CameraTracker tracker;
+    tracker.initialize(hanging.bgr, hanging.silhouette, blind);
+    ASSERT_EQ(tracker.state(Effector::right_hand), CfofState::lost);
+    if (borrowed) tracker.borrow_colours(Effector::right_hand, donor, 1.0);
+    tracker.correct(Effector::right_hand, hand);
+    for (int f = 0; f < 3; ++f) {
+      tracker.track(hanging.bgr, hanging.silhouette, depth);
+      const bool on_hand = tracker.state(Effector::right_hand) == CfofState::tracking &&
+                           distance(tracker.position(Effector::right_hand), hand) < 15.0;
+      EXPECT_EQ(on_hand, borrowed) << "frame " << f;
+    }
+  }
+  // A part with colours of its own keeps them: the donor's head is not the hand.
+  CameraTracker own;
+  own.initialize(hanging.bgr, hanging.silhouette, seen);
+  own.borrow_colours(Effector::right_hand, donor, 3.0);
+  EXPECT_EQ(own.roi(Effector::right_hand), donor.roi(Effector::right_hand));
+}
+
+// Multiview swap repair (CameraTracker::swap): a camera that started its left hand on the hand
+// and its right hand on the head (labels exchanged) has the two tracks exchanged whole, and
+// each part is then followed where the other was.
+TEST(CameraTracker, SwappedPartsExchangeTheirTracks) {
+  CameraTracker tracker;
+  InitialRegions regions;
+  regions.person_px = kPersonPx;
+  regions.roi[index_of(Effector::left_hand)] = cv::Rect2d(100, 180, 24, 24);
+  regions.roi[index_of(Effector::right_hand)] = cv::Rect2d(136, 16, 48, 48);
+  const Frame hanging = person(false);
+  tracker.initialize(hanging.bgr, hanging.silhouette, regions);
+  const cv::Point2d hand = tracker.position(Effector::left_hand);
+  const cv::Point2d head = tracker.position(Effector::right_hand);
+  const cv::Rect2d hand_roi = tracker.roi(Effector::left_hand);
+  tracker.swap(Effector::left_hand, Effector::right_hand);
+  EXPECT_EQ(tracker.position(Effector::right_hand), hand);
+  EXPECT_EQ(tracker.position(Effector::left_hand), head);
+  EXPECT_EQ(tracker.roi(Effector::right_hand), hand_roi);
+  std::array<double, kEffectorCount> depth;
+  depth.fill(std::numeric_limits<double>::quiet_NaN());
+  for (int f = 0; f < 3; ++f) {
+    tracker.track(hanging.bgr, hanging.silhouette, depth);
+    EXPECT_EQ(tracker.state(Effector::right_hand), CfofState::tracking);
+    EXPECT_LT(distance(tracker.position(Effector::right_hand), hand), 5.0) << "frame " << f;
+    EXPECT_LT(distance(tracker.position(Effector::left_hand), head), 5.0) << "frame " << f;
   }
 }
 
