@@ -138,7 +138,7 @@ std::string loop_summary_text(const LoopResult& r) {
 void add_loop_options(CLI::App* cmd, LoopRun& run, LoopCliOptions& cli) {
   add_render_options(cmd, run.render, cli.seed);
   add_track_options(cmd, run.track, TrackOptionScope::loop);
-  refuse_other_methods_inputs(cmd, run.track);
+  refuse_other_methods_options(cmd, run.track);
   add_scoring_options(cmd, run.validate, cli.scoring);
   add_choice(cmd, "--detector", run.detector, kLoopDetectors,
              "2D keypoints triangulated by --method triangulate instead of a tracker reading the "

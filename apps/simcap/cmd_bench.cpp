@@ -61,7 +61,7 @@ void add_bench_track(CLI::App& bench, Action& action) {
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   add_track_options(cmd, options.track, TrackOptionScope::loop);
-  refuse_other_methods_inputs(cmd, options.track);
+  refuse_other_methods_options(cmd, options.track);
   cmd->footer(
       "Examples:\n"
       "  simcap bench track out/studio4\n"

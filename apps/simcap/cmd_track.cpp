@@ -1,11 +1,16 @@
 // simcap track DATASET -o TRACK: run a tracker over a rendered (or real) dataset.
 #include <cstdio>
+#include <filesystem>
 
 #include "apps/simcap/commands.h"
 #include "apps/simcap/track_cli.h"
+#include "core/calibration.h"
+#include "core/error.h"
 #include "tracker/registry.h"
 
 namespace simcap::cli {
+
+namespace fs = std::filesystem;
 
 void add_track(CLI::App& app, Action& action) {
   auto* cmd = app.add_subcommand("track", "Run a tracker on a dataset and write its joints3d.csv");
@@ -18,7 +23,14 @@ void add_track(CLI::App& app, Action& action) {
   cmd->add_option("-o,--output", *out, "Track folder to write (joints3d.csv, diagnostics/)")
       ->required();
   add_track_options(cmd, *options, TrackOptionScope::track);
-  refuse_other_methods_inputs(cmd, *options);
+  refuse_other_methods_options(cmd, *options, [dataset] {
+    try {
+      return static_cast<int>(
+          read_opencv_calibration(fs::path(*dataset) / "calibration" / "opencv.yaml").size());
+    } catch (const Error&) {
+      return 0;  // the track itself says what is wrong with the dataset
+    }
+  });
   cmd->footer(
       "Examples:\n"
       "  simcap track out/studio4 -o out/track\n"

@@ -1,6 +1,9 @@
 #include "apps/simcap/track_cli.h"
 
+#include <algorithm>
 #include <array>
+#include <functional>
+#include <vector>
 
 #include "apps/simcap/choice_option.h"
 #include "apps/simcap/number_checks.h"
@@ -99,6 +102,39 @@ std::vector<std::string> choices_of(const Table& table) {
   return names;
 }
 
+using MethodOptionList = std::pair<std::vector<const char*>, std::vector<tracker::TrackMethod>>;
+
+// The options only some methods read; the rest (--actor, --silhouettes, --init, --export,
+// --frames, ...) every method does. Each such option is in the help's group of its methods
+// ("sik options"), which also tells it from a command's own option of the same name (loop's
+// --seed is the render's).
+const std::vector<MethodOptionList> kMethodOptions = {
+    {{"--voxel", "--joints", "--appearance", "--filter", "--traversal", "--occlusion", "--limits"},
+     {tracker::TrackMethod::moschini}},
+    {{"--oracle", "--inspect"}, {tracker::TrackMethod::moschini, tracker::TrackMethod::monocular}},
+    {{"--effectors", "--camera", "--surface-quantile", "--occlusion-quantile",
+      "--surface-thickness", "--consensus-px", "--reseed", "--view-swaps", "--pair-consensus",
+      "--borrow-colours", "--refind-reach", "--refind-patience", "--middle-targets",
+      "--pelvis-travel", "--spine-bend", "--sik-noise"},
+     {tracker::TrackMethod::sik}},
+    {{"--body", "--floor", "--search", "--particles", "--heuristics", "--smoothing",
+      "--region-combine", "--work-height", "--diffusion", "--feet-sigma", "--top-sigma",
+      "--mirror-groups", "--hand-depths", "--limb-end-depths", "--limb-end-legs", "--depth-groups",
+      "--shading-sigma"},
+     {tracker::TrackMethod::monocular}},
+    {{"--detections", "--layout", "--smooth", "--cutoff", "--max-error", "--bones", "--swaps"},
+     {tracker::TrackMethod::triangulate}},
+    {{"--seed"}, {tracker::TrackMethod::sik, tracker::TrackMethod::monocular}},
+};
+
+std::string method_names(const std::vector<tracker::TrackMethod>& methods) {
+  std::string names;
+  for (tracker::TrackMethod m : methods) {
+    names += (names.empty() ? "" : " or ") + std::string(name_of(tracker::kTrackMethods, m));
+  }
+  return names;
+}
+
 std::string method_help() {
   std::string help = "Tracker:";
   for (const tracker::TrackerFamily& f : tracker::tracker_families()) {
@@ -109,9 +145,7 @@ std::string method_help() {
   return help;
 }
 
-}  // namespace
-
-void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope scope) {
+void declare_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope scope) {
   using namespace tracker;
   add_choice(cmd, "--method", o.method, kTrackMethods, method_help());
   cmd->add_option("--actor", o.actor,
@@ -375,21 +409,54 @@ void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope
   cmd->add_flag("-q,--quiet", o.quiet, "No progress on stderr");
 }
 
-void refuse_other_methods_inputs(CLI::App* cmd, const tracker::TrackOptions& options) {
-  cmd->parse_complete_callback([cmd, &options] {
+}  // namespace
+
+void add_track_options(CLI::App* cmd, tracker::TrackOptions& o, TrackOptionScope scope) {
+  const size_t earlier_options = cmd->get_options().size();
+  declare_track_options(cmd, o, scope);
+  const std::vector<CLI::Option*> declared = cmd->get_options();
+  for (size_t i = earlier_options; i < declared.size(); ++i) {
+    CLI::Option* option = declared[i];
+    for (const auto& [flags, readers] : kMethodOptions) {
+      for (const char* flag : flags) {
+        if (option->check_name(flag)) option->group(method_names(readers) + " options");
+      }
+    }
+  }
+}
+
+void refuse_other_methods_options(CLI::App* cmd, const tracker::TrackOptions& options,
+                                  std::function<int()> cameras) {
+  cmd->parse_complete_callback([cmd, &options, cameras] {
     using tracker::TrackMethod;
-    const std::pair<const char*, TrackMethod> inputs[] = {
-        {"--effectors", TrackMethod::sik}, {"--detections", TrackMethod::triangulate}};
-    for (const auto& [flag, reader] : inputs) {
-      if (cmd->count(flag) == 0 || options.method == reader) continue;
-      const std::string wanted(name_of(tracker::kTrackMethods, reader));
-      throw CLI::ValidationError(flag,
-                                 "only --method " + wanted + " reads it, and the method is " +
-                                     std::string(name_of(tracker::kTrackMethods, options.method)) +
-                                     (options.method == TrackMethod::automatic
-                                          ? " (moschini with 2+ cameras, monocular with one)"
-                                          : "") +
-                                     "; add --method " + wanted + ", or leave " + flag + " out");
+    // The automatic method becomes moschini or monocular once the cameras are counted.
+    const int count = options.method == TrackMethod::automatic && cameras ? cameras() : 0;
+    const std::vector<TrackMethod> chosen =
+        options.method != TrackMethod::automatic ? std::vector<TrackMethod>{options.method}
+        : count > 0 ? std::vector<TrackMethod>{tracker::resolve_method(options.method, count)}
+                    : std::vector<TrackMethod>{TrackMethod::moschini, TrackMethod::monocular};
+    for (const auto& [flags, readers] : kMethodOptions) {
+      for (const char* flag : flags) {
+        const CLI::Option* given = cmd->get_option_no_throw(flag);
+        if (given == nullptr || given->count() == 0 ||
+            given->get_group() != method_names(readers) + " options") {
+          continue;
+        }
+        const bool read = std::any_of(chosen.begin(), chosen.end(), [&](TrackMethod m) {
+          return std::find(readers.begin(), readers.end(), m) != readers.end();
+        });
+        if (read) continue;
+        const std::string wanted = method_names(readers);
+        throw CLI::ValidationError(
+            flag,
+            "only --method " + wanted + " reads it, and the method is " +
+                std::string(name_of(tracker::kTrackMethods, options.method)) +
+                (options.method != TrackMethod::automatic ? ""
+                 : count > 0 ? " (" + method_names(chosen) + " for the dataset's " +
+                                   std::to_string(count) + " camera" + (count == 1 ? "" : "s") + ")"
+                             : " (moschini with 2+ cameras, monocular with one)") +
+                "; add --method " + wanted + ", or leave " + flag + " out");
+      }
     }
   });
 }

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,10 +20,12 @@ enum class TrackOptionScope {
 
 void add_track_options(CLI::App* cmd, tracker::TrackOptions& options, TrackOptionScope scope);
 
-// Refuses, once `cmd` is parsed, an option that is another method's input (--effectors: sik's,
-// --detections: triangulate's): with a method that does not read it, it would be ignored and the
-// run would measure something else than was asked.
-void refuse_other_methods_inputs(CLI::App* cmd, const tracker::TrackOptions& options);
+// Refuses, once `cmd` is parsed, an option only other methods read (--effectors: sik's,
+// --particles: monocular's, --voxel: moschini's, ...): with a method that does not read it, it
+// would be ignored and the run would measure something else than was asked. `cameras`, when
+// given, counts the dataset's cameras, which decide what the automatic method becomes (0: unknown).
+void refuse_other_methods_options(CLI::App* cmd, const tracker::TrackOptions& options,
+                                  std::function<int()> cameras = {});
 
 // Applies a sweep point's track.* keys ("silhouettes" = "bgsub", "voxel_m" = "0.03") through the
 // same declarations; an unknown key or a bad value is an Error naming `sweep_file`, the key's line

@@ -58,17 +58,26 @@ TEST(Registry, RefusesADatasetTheMethodCannotUseBeforeWritingAnything) {
 
 // --effectors and --detections choose sik's and triangulate's input: with another method (or the
 // default, which picks moschini or monocular) they would be ignored without a word.
-TEST(Registry, RefusesAnotherMethodsInputOption) {
+TEST(Registry, RefusesAnotherMethodsOption) {
   TempDir dir;
   testing::write_capsule_dataset(dir / "ds", {.frames = 2, .cameras = 2});
   const std::string track = "track " + (dir / "ds").string() + " -o " + (dir / "t").string();
   std::string log;
   EXPECT_EQ(run_simcap(track + " --effectors depth", &log), 1);
   EXPECT_NE(log.find("--effectors: only --method sik reads it, and the method is auto (moschini "
-                     "with 2+ cameras, monocular with one); add --method sik, or leave "
-                     "--effectors out"),
+                     "for the dataset's 2 cameras); add --method sik, or leave --effectors out"),
             std::string::npos)
       << log;
+  // Each method's own options: monocular's particles, moschini's voxels, sik's and monocular's
+  // seed (loop's --seed is the render's, which every method reads).
+  EXPECT_EQ(run_simcap(track + " --particles 50", &log), 1);
+  EXPECT_NE(log.find("--particles: only --method monocular reads it"), std::string::npos) << log;
+  EXPECT_EQ(run_simcap(track + " --method sik --voxel 0.03", &log), 1);
+  EXPECT_NE(log.find("--voxel: only --method moschini reads it, and the method is sik;"),
+            std::string::npos)
+      << log;
+  EXPECT_EQ(run_simcap(track + " --method moschini --seed 2", &log), 1);
+  EXPECT_NE(log.find("--seed: only --method sik or monocular reads it"), std::string::npos) << log;
   EXPECT_EQ(run_simcap(track + " --method sik --detections det.json", &log), 1);
   EXPECT_NE(log.find("--detections: only --method triangulate reads it, and the method is sik;"),
             std::string::npos)
@@ -80,8 +89,16 @@ TEST(Registry, RefusesAnotherMethodsInputOption) {
   EXPECT_NE(log.find("--effectors: only --method sik reads it, and the method is moschini;"),
             std::string::npos)
       << log;
+  EXPECT_EQ(run_simcap("loop " + std::string(SIMCAP_SOURCE_DIR) +
+                           "/scenes/studio4.yaml -o never --method sik --particles 50",
+                       &log),
+            1);
+  EXPECT_NE(log.find("--particles: only --method monocular reads it, and the method is sik;"),
+            std::string::npos)
+      << log;
   EXPECT_FALSE(fs::exists(dir / "t"));
   EXPECT_EQ(run_simcap(track + " --method sik --effectors gt -q", &log), 0) << log;
+  EXPECT_EQ(run_simcap(track + " --voxel 0.03 -q", &log), 0) << log;
 }
 
 // An interrupted render holds its first frames only: tracking them would pass for the whole.
