@@ -429,18 +429,22 @@ void refuse_other_methods_options(CLI::App* cmd, const tracker::TrackOptions& op
                                   std::function<int()> cameras) {
   cmd->parse_complete_callback([cmd, &options, cameras] {
     using tracker::TrackMethod;
-    // The automatic method becomes moschini or monocular once the cameras are counted.
-    const int count = options.method == TrackMethod::automatic && cameras ? cameras() : 0;
-    const std::vector<TrackMethod> chosen =
-        options.method != TrackMethod::automatic ? std::vector<TrackMethod>{options.method}
-        : count > 0 ? std::vector<TrackMethod>{tracker::resolve_method(options.method, count)}
-                    : std::vector<TrackMethod>{TrackMethod::moschini, TrackMethod::monocular};
+    // The automatic method becomes moschini or monocular once the cameras are counted (only
+    // when an option needs it: the dataset is the track's to check).
+    int count = -1;
+    std::vector<TrackMethod> chosen;
     for (const auto& [flags, readers] : kMethodOptions) {
       for (const char* flag : flags) {
         const CLI::Option* given = cmd->get_option_no_throw(flag);
         if (given == nullptr || given->count() == 0 ||
             given->get_group() != method_names(readers) + " options") {
           continue;
+        }
+        if (count < 0) {
+          count = options.method == TrackMethod::automatic && cameras ? cameras() : 0;
+          chosen = options.method != TrackMethod::automatic ? std::vector{options.method}
+                   : count > 0 ? std::vector{tracker::resolve_method(options.method, count)}
+                               : std::vector{TrackMethod::moschini, TrackMethod::monocular};
         }
         const bool read = std::any_of(chosen.begin(), chosen.end(), [&](TrackMethod m) {
           return std::find(readers.begin(), readers.end(), m) != readers.end();
