@@ -92,9 +92,8 @@ CfofFrame CameraTracker::frame(const cv::Mat& bgr, const cv::Mat& silhouette) co
   return CfofFrame::from_bgr(bgr, params_.colour_in_silhouette ? silhouette : cv::Mat(), cfof_);
 }
 
-void CameraTracker::initialize(const cv::Mat& bgr, const cv::Mat& silhouette,
-                               const InitialRegions& regions) {
-  person_px_ = regions.person_px;
+void CameraTracker::start_lost(const cv::Mat& bgr, const cv::Mat& silhouette, double person_px) {
+  person_px_ = person_px;
   cfof_ = params_.cfof.scaled_for(person_px_);
   pelvis_ = PelvisTracker(params_.pelvis.scaled_for(person_px_));
   previous_ = frame(bgr, silhouette);
@@ -102,11 +101,17 @@ void CameraTracker::initialize(const cv::Mat& bgr, const cv::Mat& silhouette,
   pelvis_seen_ = pelvis.has_value();
   untracked_ = {};
   if (pelvis) pelvis_position_ = *pelvis;
+  parts_.fill(CfofTracker(cfof_));
+  for (auto& s : surface_) s.clear();
+}
+
+void CameraTracker::initialize(const cv::Mat& bgr, const cv::Mat& silhouette,
+                               const InitialRegions& regions) {
+  start_lost(bgr, silhouette, regions.person_px);
   int started = 0;
   for (Effector e : kEffectors) {
     if (e == Effector::pelvis) continue;
     CfofTracker& t = parts_[part_index(e)];
-    t = CfofTracker(cfof_);
     if (!regions.roi[index_of(e)]) continue;
     try {
       t.initialize(previous_, *regions.roi[index_of(e)]);

@@ -68,6 +68,10 @@ class CameraTracker {
   // Starts every part with an ROI in `regions` (the others start lost where the pelvis is) on
   // the first frame (`bgr` CV_8UC3, `silhouette` CV_8UC1). Throws Error when no part can start.
   void initialize(const cv::Mat& bgr, const cv::Mat& silhouette, const InitialRegions& regions);
+  // Starts with every part lost and without colours, the person `person_px` high in the image:
+  // a camera that does not see the person yet (multiview), whose parts other cameras' consensus
+  // brings in when they show (borrow_colours, correct).
+  void start_lost(const cv::Mat& bgr, const cv::Mat& silhouette, double person_px);
   // The next frame. `depth[e]` is each part's distance from this camera (any consistent measure,
   // e.g. the previous 3D estimate's camera z) for the occlusion rule; NaN: unknown. `root[e]`
   // is where the part's limb starts in the image (the neck's base for the head, shoulders for

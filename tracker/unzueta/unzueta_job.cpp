@@ -189,19 +189,36 @@ class Pipeline {
                                        images[i].silhouette);
       }
     }
+    const std::string hint =
+        options_.init == InitMethod::gt
+            ? " (--init gt: the part labels show none of the parts there; is the person in its "
+              "view?)"
+            : " (--init auto: the person must start in the calibration posture, hands raised "
+              "beside the head, facing " +
+                  camera(cameras_[primary]).name + "; --init gt starts from the labels)";
+    // Multiview starts in the cameras that see the person; the others start lost (below).
+    std::vector<size_t> started, unstarted;
+    std::string why;
     for (size_t i = 0; i < cameras_.size(); ++i) {
       try {
         trackers_[i].initialize(images[i].bgr, images[i].silhouette, regions[i]);
+        started.push_back(i);
       } catch (const Error& e) {
-        throw Error(
-            "frame " + std::to_string(f) + ", " + camera(cameras_[i]).name + ": " + e.what() +
-            (options_.init == InitMethod::gt
-                 ? " (--init gt: the part labels show none of the parts there; is the person in "
-                   "its view?)"
-                 : " (--init auto: the person must start in the calibration posture, hands "
-                   "raised beside the head, facing " +
-                       camera(cameras_[primary]).name + "; --init gt starts from the labels)"));
+        const std::string where = camera(cameras_[i]).name + ": " + e.what();
+        if (options_.effectors != EffectorSource::multiview) {
+          throw Error("frame " + std::to_string(f) + ", " + where + hint);
+        }
+        unstarted.push_back(i);
+        why += (why.empty() ? "" : "; ") + where;
       }
+    }
+    if (!unstarted.empty() && started.size() < 2) {
+      std::string names;
+      for (size_t i : started) names += (names.empty() ? "" : ", ") + camera(cameras_[i]).name;
+      throw Error("frame " + std::to_string(f) +
+                  ": --effectors multiview needs the person in at least two cameras to start, " +
+                  (started.empty() ? "none could" : "only " + names + " could") + " (" + why + ")" +
+                  hint);
     }
     // The body SIK solves.
     if (truth) {
@@ -241,6 +258,9 @@ class Pipeline {
         posture[index_of(e)] = truth->positions[ti][j] + parts_->centre_offset(e);
       }
     }
+    if (!unstarted.empty()) {
+      start_lost(unstarted, started.front(), posture[index_of(Effector::pelvis)], images);
+    }
     centre_ = posture;
     for (Effector e : kEffectors)
       order_z_[index_of(e)] = camera(cameras_[0]).to_camera(centre_[index_of(e)]).z();
@@ -256,6 +276,22 @@ class Pipeline {
       pelvis_offset_ = truth->positions[0][truth->joint_index("humanoid_root")] - pelvis;
     } else {
       pelvis_offset_ = Eigen::Vector3d(0, skeleton_[0].center.y() - pelvis.y(), 0);
+    }
+  }
+
+  // Cameras that did not see the person on the first frame start with every part lost, the
+  // person as high in the image as in camera `donor` at the focal length over the pelvis'
+  // depth (`pelvis`; behind the camera: as high as in the donor); reseed brings their parts in.
+  void start_lost(const std::vector<size_t>& which, size_t donor, const Eigen::Vector3d& pelvis,
+                  const std::vector<Images>& images) {
+    const Camera& d = camera(cameras_[donor]);
+    const double donor_scale = d.K(0, 0) / d.to_camera(pelvis).z();
+    for (size_t i : which) {
+      const Camera& cam = camera(cameras_[i]);
+      const double z = cam.to_camera(pelvis).z();
+      const double scale = z > 0 ? cam.K(0, 0) / z / donor_scale : 1.0;
+      trackers_[i].start_lost(images[i].bgr, images[i].silhouette,
+                              trackers_[donor].person_px() * scale);
     }
   }
 
