@@ -54,9 +54,18 @@ class Fitter {
         frame(C("l_shoulder") - C("r_shoulder"), C("vc7") - C("humanoid_root")).transpose();
     put("vt1", chest);
     put("vc7", swing(chest * (C("skullbase") - C("vc7")), P("skullbase") - P("vc7")) * chest);
+    // The spine below vt1 turns with the pelvis, so vt1 sits where the pelvis carries it.
+    const Vector3d vt1 = P("humanoid_root") + pelvis * (C("vt1") - C("humanoid_root"));
     for (const char* side : {"l_", "r_"}) {
       const std::string x(side);
-      limb(x + "shoulder", x + "elbow", x + "radiocarpal", chest, false, P, C, put);
+      // The clavicle turns towards the tracked shoulder: a shrug or a reach moves the shoulder
+      // centre off the chest's neutral place, and the whole arm with it.
+      const std::string sc = x + "sternoclavicular";
+      const Vector3d sc_at = vt1 + chest * (C(sc) - C("vt1"));
+      const Matrix3d clavicle =
+          swing(chest * (C(x + "shoulder") - C(sc)), P(x + "shoulder") - sc_at) * chest;
+      put(sc, clavicle);
+      limb(x + "shoulder", x + "elbow", x + "radiocarpal", clavicle, false, P, C, put);
       limb(x + "hip", x + "knee", x + "talocrural", pelvis, true, P, C, put);
     }
     Pose pose = Pose::neutral(s_);

@@ -22,11 +22,13 @@ struct TrackMotion {
 
 // Per frame, a pose of `skeleton` (from humanoid_for_track) whose bones point along the track's:
 // the pelvis turned so that its hips and its spine line (humanoid_root to vc7) point as the
-// track's, the chest (vt1) likewise with the shoulders; neck (vc7 to skullbase), upper arms,
+// track's, the chest (vt1) likewise with the shoulders, each clavicle towards its tracked
+// shoulder (a shrug lifts the arm); neck (vc7 to skullbase), upper arms,
 // forearms, thighs and shanks along the tracked bones, elbows and knees as hinges about the
 // axis normal to the plane the track bends them in (a straight limb keeps the shortest turn);
 // hands, feet and head continue their limbs. The root sits at the tracked humanoid_root. The
-// joints' positions differ from the track's by the differences of bone lengths only.
+// joints' positions differ from the track's by the differences of bone lengths only (the
+// spine between the pelvis and vt1 does not bend, which shifts the shoulders by a few mm).
 TrackMotion motion_from_track(const JointTrack& track, const Skeleton& skeleton, double fps);
 
 }  // namespace simcap
