@@ -53,7 +53,9 @@ struct Rig {
     StickPose away = truth;
     away.t0.x() += 0.6;
     std::vector<HeldFrame> frames = held(first, away);
-    frames.back().obs = std::make_shared<Observation>(observe(away).observation);
+    // The observation's views point at the rig's cameras: the pointer keeps them alive.
+    const auto rig_away = std::make_shared<const testing::RigObservation>(observe(away));
+    frames.back().obs = std::shared_ptr<const Observation>(rig_away, &rig_away->observation);
     return frames;
   }
 };
