@@ -267,12 +267,16 @@ cv::FileStorage open_for_reading(const fs::path& path) {
   }
 }
 
+// FileStorage::operator[] asserts (throws cv::Exception) on a file whose top is not a map.
+void require_top_map(const fs::path& path, const cv::FileStorage& fsr, const std::string& fields) {
+  if (!fsr.root().isMap()) {
+    throw_input_error(path, 0, "", "expected a map of fields at the top (" + fields + ", ...)");
+  }
+}
+
 std::vector<std::string> read_names(const fs::path& path, const cv::FileStorage& fsr,
                                     const std::string& key) {
-  // FileStorage::operator[] asserts (throws cv::Exception) on a file whose top is not a map.
-  if (!fsr.root().isMap()) {
-    throw_input_error(path, 0, "", "expected a map of fields at the top (camera_names, ...)");
-  }
+  require_top_map(path, fsr, key);
   const cv::FileNode n = fsr[key];
   if (n.empty() || !n.isSeq()) {
     throw_input_error(path, 0, "field '" + key + "'", "missing (expected a list of camera names)");
@@ -378,6 +382,7 @@ std::vector<Camera> read_easymocap_calibration(const fs::path& intri_path,
   cv::FileStorage intri = open_for_reading(intri_path);
   cv::FileStorage extri = open_for_reading(extri_path);
   const auto names = read_names(intri_path, intri, "names");
+  require_top_map(extri_path, extri, "Rot_" + names.front() + ", T_" + names.front());
   std::vector<Camera> cams;
   for (const auto& name : names) {
     const FieldReader ri(intri_path, intri.root(), name);

@@ -196,6 +196,14 @@ TEST(Calibration, EasyMocapMissingFieldNamesTheFile) {
       error_of([&] { read_easymocap_calibration(dir / "intri.yml", dir / "extri.yml"); });
   EXPECT_NE(msg.find("extri.yml"), std::string::npos) << msg;
   EXPECT_NE(msg.find("field 'T_cam01'"), std::string::npos) << msg;
+
+  // An extrinsics file whose top is a list, not the map of fields (OpenCV asserted on it).
+  write_text_atomic(dir / "extri.yml", "%YAML:1.0\n---\n- 1\n- 2\n");
+  const auto list =
+      error_of([&] { read_easymocap_calibration(dir / "intri.yml", dir / "extri.yml"); });
+  EXPECT_NE(list.find("extri.yml: expected a map of fields at the top (Rot_cam00, T_cam00, ...)"),
+            std::string::npos)
+      << list;
 }
 
 }  // namespace
