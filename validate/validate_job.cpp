@@ -126,6 +126,15 @@ fs::path write_video(const ValidationInputs& in, const Evaluation& ev, const Cam
   return file;
 }
 
+// The camera --video-camera names; an Error that says it was that option's value otherwise.
+const Camera& video_camera_of(const ValidationInputs& in, const std::string& name) {
+  try {
+    return find_camera(in.cameras, name, in.dataset / "calibration" / "opencv.yaml");
+  } catch (const Error& e) {
+    throw Error(std::string("--video-camera: ") + e.what());
+  }
+}
+
 }  // namespace
 
 fs::path rgb_frame_path(const fs::path& dataset, const std::string& camera, int frame) {
@@ -153,8 +162,7 @@ ValidateSummary validate_dataset(const fs::path& dataset, const fs::path& track,
   if (options.media) {
     const Camera& video_camera = options.video_camera.empty()
                                      ? in.cameras.front()
-                                     : find_camera(in.cameras, options.video_camera,
-                                                   dataset / "calibration" / "opencv.yaml");
+                                     : video_camera_of(in, options.video_camera);
     const auto bones = stick_figure_bones(ev.joints);
     const long overlay_count =
         static_cast<long>(pick_frames(ev, options.overlay_frames).size() * in.cameras.size());
