@@ -1,11 +1,13 @@
 #include "tracker/common/dataset.h"
 
 #include <yaml-cpp/yaml.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cstdio>
 #include <opencv2/imgcodecs.hpp>
 
+#include "core/atomic_file.h"
 #include "core/calibration.h"
 #include "core/dataset_actors.h"
 #include "core/error.h"
@@ -40,13 +42,11 @@ std::string frame_file(int frame) {
 void refuse_unfinished_render(const fs::path& root) {
   const fs::path meta = root / "meta.json";
   if (!fs::is_regular_file(meta)) return;
-  YAML::Node complete;
-  try {
-    complete = YAML::LoadFile(meta.string())["complete"];
-  } catch (const YAML::Exception&) {
-    return;  // not simcap's meta.json: the tracker reads nothing else from it
-  }
-  if (complete && !complete.as<bool>(true)) {
+  const nlohmann::json parsed = nlohmann::json::parse(read_text(meta), nullptr, false);
+  // Not simcap's meta.json: the tracker reads nothing else from it.
+  if (parsed.is_discarded() || !parsed.is_object()) return;
+  const auto complete = parsed.find("complete");
+  if (complete != parsed.end() && complete->is_boolean() && !complete->get<bool>()) {
     throw Error(meta.string() +
                 ": \"complete\": false: the render of this dataset did not finish (interrupted, "
                 "or still running); complete it with simcap render SCENE -o " +
